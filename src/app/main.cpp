@@ -1,0 +1,148 @@
+// mpm_lig: hierarchical MPM x DEM. Command line, case loading and the top-level error policy.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include <mpi.h>
+
+#include "core/analysis.h"
+#include "core/case_error.h"
+#include "core/case_node.h"
+#include "core/mpi_session.h"
+#include "element/register.h"
+#include "mpm/register.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage:
+  mpm_lig CASE.json [--output DIR] [--resume DIR]   run a case
+  mpm_lig --validate CASE.json                      check the whole case; exit 0 (valid) or 2
+  mpm_lig --help                                    this text
+
+  Runs under MPI: mpirun -np N mpm_lig CASE.json
+  --output DIR   where results go (default: ./<case name>_out)
+  --resume DIR   continue from the last checkpoint in DIR
+
+Exit codes: 0 done, 1 run failed, 2 bad case or command line, 3 a DEM engine failed.
+)";
+
+struct CommandLine {
+  std::string case_file;
+  std::string output_dir;
+  std::string resume_dir;
+  bool validate_only = false;
+  bool help = false;
+};
+
+//! Parse argv; a std::nullopt means bad usage (already reported).
+std::optional<CommandLine> parse_command_line(int argc, char** argv, bool report) {
+  CommandLine cl;
+  auto fail = [&](const std::string& what) -> std::optional<CommandLine> {
+    if (report)
+      std::fprintf(stderr, "mpm_lig: %s\n%s", what.c_str(), kUsage);
+    return std::nullopt;
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](const char* flag) -> const char* {
+      return i + 1 < argc ? argv[++i] : (fail(std::string(flag) + " needs a value"), nullptr);
+    };
+    if (arg == "--help" || arg == "-h") {
+      cl.help = true;
+    } else if (arg == "--validate") {
+      cl.validate_only = true;
+    } else if (arg == "--output" || arg == "-o") {
+      const char* v = value("--output");
+      if (!v)
+        return std::nullopt;
+      cl.output_dir = v;
+    } else if (arg == "--resume") {
+      const char* v = value("--resume");
+      if (!v)
+        return std::nullopt;
+      cl.resume_dir = v;
+    } else if (!arg.empty() && arg[0] == '-') {
+      return fail("unknown option '" + arg + "'");
+    } else if (cl.case_file.empty()) {
+      cl.case_file = arg;
+    } else {
+      return fail("more than one case file given ('" + cl.case_file + "', '" + arg + "')");
+    }
+  }
+  if (!cl.help && cl.case_file.empty())
+    return fail("no case file given");
+  return cl;
+}
+
+mpm_lig::AnalysisRegistry make_registry() {
+  mpm_lig::AnalysisRegistry registry;
+  mpm_lig::element::register_analyses(registry);
+  mpm_lig::mpm::register_analyses(registry);
+  return registry;
+}
+
+//! Validate the whole case and build the analysis (no files, no engines yet).
+std::unique_ptr<mpm_lig::Analysis> load_analysis(const std::string& case_file) {
+  const auto document = mpm_lig::CaseDocument::load(case_file);
+  const mpm_lig::CaseNode root = document.root();
+  root.get_or<std::string>("title", "");
+  const auto registry = make_registry();
+  auto analysis = registry.create(root.child("analysis"), "type", root);
+  document.check_all_used();
+  return analysis;
+}
+
+std::string default_output_dir(const std::string& case_file) {
+  return std::filesystem::path(case_file).stem().string() + "_out";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  mpm_lig::MpiSession mpi(&argc, &argv);
+  const bool root_rank = mpi.rank() == 0;
+
+  const auto cl = parse_command_line(argc, argv, root_rank);
+  if (!cl)
+    return mpm_lig::kExitBadCase;
+  if (cl->help) {
+    if (root_rank)
+      std::fputs(kUsage, stdout);
+    return 0;
+  }
+
+  std::unique_ptr<mpm_lig::Analysis> analysis;
+  try {
+    analysis = load_analysis(cl->case_file);
+  } catch (const mpm_lig::CaseError& e) {
+    if (root_rank)
+      std::fprintf(stderr, "mpm_lig: %s: %s\n", cl->case_file.c_str(), e.what());
+    return mpm_lig::kExitBadCase;
+  }
+  if (cl->validate_only) {
+    if (root_rank)
+      std::printf("%s: valid\n", cl->case_file.c_str());
+    return 0;
+  }
+
+  mpm_lig::RunContext context;
+  context.case_file = cl->case_file;
+  context.output_dir = cl->output_dir.empty() ? default_output_dir(cl->case_file) : cl->output_dir;
+  context.resume_dir = cl->resume_dir;
+  try {
+    if (root_rank)
+      std::filesystem::create_directories(context.output_dir);
+    MPI_Barrier(MPI_COMM_WORLD);
+    analysis->run(context);
+  } catch (const mpm_lig::CaseError& e) {
+    // Some problems can only be seen at run time (a restart file that is not there).
+    mpm_lig::abort_job(cl->case_file + ": " + e.what(), mpm_lig::kExitBadCase);
+  } catch (const std::exception& e) {
+    mpm_lig::abort_job(std::string("run failed: ") + e.what(), 1);
+  }
+  return 0;
+}

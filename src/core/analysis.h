@@ -1,0 +1,33 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <mpi.h>
+
+#include "core/case_node.h"
+#include "core/registry.h"
+
+namespace mpm_lig {
+
+//! What every analysis gets to run: where to write and on which ranks.
+struct RunContext {
+  std::string case_file;   //!< the case file as given on the command line
+  std::string output_dir;  //!< created by the application before run()
+  std::string resume_dir;  //!< empty unless --resume DIR was given
+  MPI_Comm comm = MPI_COMM_WORLD;
+};
+
+//! One kind of run (an element test on an RVE, an MPM problem, ...). Constructed from
+//! the case by a factory that validates everything it needs, so that `mpm_lig --validate`
+//! finds every problem before anything is created; run() then does the work.
+class Analysis {
+ public:
+  virtual ~Analysis() = default;
+  virtual void run(const RunContext& context) = 0;
+};
+
+//! Factories get the case root; they must read every key they accept.
+using AnalysisRegistry = Registry<Analysis, const CaseNode&>;
+
+}  // namespace mpm_lig

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace mpm_lig {
+
+//! A problem in the case file. `path()` names the JSON location, e.g. `rve.radius.min`.
+//! The application prints it as "<file>: <path>: <message>" and exits with code 2.
+class CaseError : public std::runtime_error {
+ public:
+  CaseError(std::string path, const std::string& message)
+      : std::runtime_error(path + ": " + message), path_(std::move(path)) {}
+
+  //! The JSON path of the offending value.
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+//! Exit code for a case that fails validation (bad input).
+inline constexpr int kExitBadCase = 2;
+
+}  // namespace mpm_lig

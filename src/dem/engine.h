@@ -1,0 +1,79 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+#include "core/tensor.h"
+
+namespace mpm_lig::dem {
+
+//! A LAMMPS-style periodic box: h = [[lx, xy, xz], [0, ly, yz], [0, 0, lz]].
+struct Box {
+  Vec3 lo = Vec3::Zero();
+  Vec3 hi = Vec3::Zero();
+  double xy = 0.0, xz = 0.0, yz = 0.0;
+
+  //! Columns are the box vectors a, b, c (upper triangular).
+  Mat3 h() const {
+    Mat3 m;
+    m << hi.x() - lo.x(), xy, xz,  //
+        0.0, hi.y() - lo.y(), yz,  //
+        0.0, 0.0, hi.z() - lo.z();
+    return m;
+  }
+  double volume() const { return h().determinant(); }
+};
+
+//! One contact between two grains, in the engine's current frame.
+struct Contact {
+  long id_i = 0, id_j = 0;  //!< grain ids
+  Vec3 branch;              //!< from the centre of i to the (periodic image of the) centre of j
+  Vec3 force;               //!< force on i from j (normal + tangential)
+};
+
+//! Options for one engine instance.
+struct EngineOptions {
+  std::string label;     //!< who owns the instance, for error reports ("RVE 17")
+  std::string log_file;  //!< empty: engine output kept in memory only (for error reports)
+};
+
+//! One DEM engine instance (LIGGGHTS or LAMMPS) on a communicator, behind the library API.
+//! Every call is collective over the instance's communicator.
+class Engine {
+ public:
+  virtual ~Engine() = default;
+
+  //! "liggghts" or "lammps".
+  virtual std::string name() const = 0;
+  //! Run one input line.
+  virtual void command(const std::string& line) = 0;
+  //! Run several input lines (a script with newlines).
+  virtual void commands(const std::string& script) = 0;
+
+  virtual Box box() const = 0;
+  virtual long atom_count() const = 0;
+  //! A global scalar (`compute_vector` for vectors) of a compute defined in the input.
+  virtual double compute_scalar(const std::string& compute_id) = 0;
+  virtual std::vector<double> compute_vector(const std::string& compute_id, int length) = 0;
+  //! Per-atom property gathered on every rank of the instance, ordered by atom id
+  //! (`name` as in lammps_gather_atoms: "x", "v", "radius", ...; `count` values per atom).
+  virtual std::vector<double> gather_atoms(const std::string& name, int count) = 0;
+  //! All contacts with their forces (for Σ r⊗f / V and force-chain snapshots).
+  virtual std::vector<Contact> contacts() = 0;
+
+  //! The last lines the engine printed (kept in memory even when its screen is off).
+  virtual std::string recent_output() const = 0;
+};
+
+//! Engines that can be named in a case file.
+std::vector<std::string> engine_names();
+
+//! Create an instance of engine `name` on `comm`. The engine's module is loaded on first use
+//! (both libraries export the same symbols, so each lives in its own dlopen'ed module).
+std::unique_ptr<Engine> create_engine(const std::string& name, MPI_Comm comm,
+                                      const EngineOptions& options);
+
+}  // namespace mpm_lig::dem

@@ -1,0 +1,7 @@
+#include "element/register.h"
+
+namespace mpm_lig::element {
+
+void register_analyses(AnalysisRegistry& /*registry*/) {}
+
+}  // namespace mpm_lig::element

@@ -1,0 +1,33 @@
+#include "io/csv_history.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace mpm_lig::io {
+
+CsvHistory::CsvHistory(const std::string& filename, std::vector<std::string> columns, bool append)
+    : columns_(std::move(columns)), out_(filename, append ? std::ios::app : std::ios::trunc) {
+  if (!out_)
+    throw std::runtime_error("cannot write '" + filename + "'");
+  if (append)
+    return;
+  for (std::size_t i = 0; i < columns_.size(); ++i)
+    out_ << (i ? "," : "") << columns_[i];
+  out_ << '\n' << std::flush;
+}
+
+void CsvHistory::write(const std::vector<double>& values) {
+  if (values.size() != columns_.size()) {
+    throw std::invalid_argument("history row has " + std::to_string(values.size()) +
+                                " values for " + std::to_string(columns_.size()) + " columns");
+  }
+  char buffer[32];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    // 17 significant digits: rows round-trip exactly (resume and rank-count comparisons).
+    std::snprintf(buffer, sizeof buffer, "%.17g", values[i]);
+    out_ << (i ? "," : "") << buffer;
+  }
+  out_ << '\n' << std::flush;
+}
+
+}  // namespace mpm_lig::io
