@@ -1,0 +1,33 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace mpm_lig::io {
+
+//! How a point field is laid out in the HDF5 file (see FieldWriter).
+enum class XdmfKind { scalar, vector, tensor, integer };
+
+struct XdmfField {
+  std::string name;
+  XdmfKind kind;
+};
+
+//! One output step as the XDMF index describes it.
+struct XdmfStep {
+  std::string group;  // HDF5 group, "step_000120"
+  double time;
+  std::size_t points;
+  std::vector<XdmfField> fields;
+};
+
+//! XDMF 2 text: a temporal collection of Polyvertex grids whose data live in `h5_name`
+//! (a path relative to the XDMF file), one grid per step.
+std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfStep>& steps);
+
+//! Write `text` to `filename` through a temporary file and a rename, so that a reader
+//! (or a killed run) never sees a half-written file.
+void replace_file(const std::string& filename, const std::string& text);
+
+}  // namespace mpm_lig::io
