@@ -42,13 +42,13 @@ void abort_job(const std::string& message, int exit_code) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::fprintf(stderr, "mpm_lig: rank %d: %s\n", rank, message.c_str());
   std::fflush(stderr);
-  MPI_Abort(MPI_COMM_WORLD, exit_code);
+  PMPI_Abort(MPI_COMM_WORLD, exit_code);  // not MPI_Abort: that is the guard below
   std::_Exit(exit_code);  // MPI_Abort does not return; this keeps [[noreturn]] honest.
 }
 
 }  // namespace mpm_lig
 
-//! The profiling-interface override described in mpi_session.h.
+//! The profiling-interface overrides described in mpi_session.h.
 extern "C" int MPI_Finalize(void) {
   if (mpm_lig::g_orderly_shutdown)
     return PMPI_Finalize();
@@ -56,4 +56,16 @@ extern "C" int MPI_Finalize(void) {
   if (auto& reporter = mpm_lig::fatal_reporter())
     report += "\n" + reporter();
   mpm_lig::abort_job(report, mpm_lig::kExitEngineFailure);
+}
+
+//! Engines call MPI_Abort on their own communicator for errors found on one rank only
+//! (`Error::one`). Report which instance failed and end the whole job with our exit code.
+//! Other callers (no engine call in progress: the reporter says nothing) pass through.
+extern "C" int MPI_Abort(MPI_Comm comm, int errorcode) {
+  auto& reporter = mpm_lig::fatal_reporter();
+  const std::string engine_report = reporter ? reporter() : std::string();
+  if (engine_report.empty())
+    return PMPI_Abort(comm, errorcode);
+  mpm_lig::abort_job("an engine aborted the run (it called MPI_Abort)\n" + engine_report,
+                     mpm_lig::kExitEngineFailure);
 }

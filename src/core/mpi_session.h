@@ -12,7 +12,9 @@ namespace mpm_lig {
 //! defines MPI_Finalize in the executable (MPI profiling interface, forwarding to
 //! PMPI_Finalize). A call that does not come from this session's destructor is an engine
 //! dying in mid-run: we report it (see `set_fatal_reporter`) and call MPI_Abort on
-//! MPI_COMM_WORLD, so the whole job ends at once with a non-zero code.
+//! MPI_COMM_WORLD, so the whole job ends at once with a non-zero code. MPI_Abort is guarded
+//! the same way: engines call it on their own communicator for errors found on one rank, and
+//! it then says which instance failed.
 class MpiSession {
  public:
   MpiSession(int* argc, char*** argv);
@@ -32,7 +34,8 @@ class MpiSession {
 inline constexpr int kExitEngineFailure = 3;
 
 //! Called (on the failing rank) when an engine ends the process; returns the text to print:
-//! which RVE, which rank, the engine's last output. Set by the DEM layer.
+//! which RVE, which rank, the engine's last output, or "" when no engine call is in progress
+//! (an MPI_Abort from elsewhere then passes through unchanged). Set by the DEM layer.
 void set_fatal_reporter(std::function<std::string()> reporter);
 
 //! End the whole job now from any rank: print `message` on stderr and MPI_Abort.

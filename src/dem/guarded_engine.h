@@ -1,0 +1,54 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dem/engine_module.h"
+
+namespace mpm_lig::dem::detail {
+
+//! The Engine handed to callers: forwards every call to the module's engine while
+//!  - marking itself as the "current instance", so that an engine that ends the process
+//!    (MPI_Finalize/MPI_Abort, see core/mpi_session.h) is reported with its label, rank and
+//!    last output;
+//!  - capturing what the engine prints outside its screen (LIGGGHTS: "version 3 8" at every
+//!    read_restart, "Style collision" warnings at creation) into its output record.
+class GuardedEngine final : public Engine {
+ public:
+  //! Creates the module engine (under guard) with `create`.
+  GuardedEngine(CreateEngineFn create, MPI_Comm comm, const EngineOptions& options,
+                const ModuleOptions& module_options);
+  ~GuardedEngine() override;
+
+  std::string name() const override;
+  void command(const std::string& line) override;
+  void commands(const std::string& script) override;
+  Box box() const override;
+  long atom_count() const override;
+  double compute_scalar(const std::string& compute_id) override;
+  std::vector<double> compute_vector(const std::string& compute_id, int length) override;
+  std::vector<double> gather_atoms(const std::string& name, int count) override;
+  std::vector<Contact> contacts() override;
+  std::string recent_output() const override;
+
+  //! Ghost atoms on this rank (tests: health of periodic boxes).
+  long ghost_count() const;
+  //! The report printed when this instance ends the job.
+  std::string failure_report() const;
+
+ private:
+  class Scope;
+  std::unique_ptr<ModuleEngine> impl_;
+  EngineOptions options_;
+  MPI_Comm comm_;
+};
+
+//! Installs the fatal reporter (core/mpi_session.h) that describes the current instance.
+void install_fatal_reporter();
+
+//! Replace the engine's "Style collision" warnings (one per style, ~242 per instance after
+//! the first) by a one-line count; other text is kept as it is.
+std::string summarise_style_collisions(const std::string& text);
+
+}  // namespace mpm_lig::dem::detail

@@ -1,0 +1,119 @@
+// The LIGGGHTS 3.8 adapter. The only file that sees LIGGGHTS internals (lammps.h, domain.h,
+// ...): the library interface of 3.8 lacks what two fixes below need.
+#include <mpi.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "compute.h"
+#include "domain.h"
+#include "lammps.h"
+#include "library.h"
+#include "modify.h"
+#include "update.h"
+
+#include "dem/library_engine.h"
+
+namespace mpm_lig::dem::detail {
+namespace {
+
+constexpr const char* kContactCompute = "mpm_lig_contacts";
+
+class LiggghtsEngine final : public LibraryEngine {
+ public:
+  LiggghtsEngine(MPI_Comm comm, const EngineOptions& options, const ModuleOptions& module)
+      : LibraryEngine(comm, options) {
+    std::vector<std::string> args = engine_args("liggghts");
+    std::vector<char*> argv;
+    for (std::string& a : args)
+      argv.push_back(a.data());
+    void* handle = nullptr;
+    lammps_open(static_cast<int>(argv.size()), argv.data(), comm, &handle);
+    lmp_ = static_cast<LAMMPS_NS::LAMMPS*>(handle);
+    adopt(handle, &lmp_->screen);
+    if (!module.skip_triclinic_correction)
+      correct_triclinic_lamda_box();
+  }
+
+  std::string name() const override { return "liggghts"; }
+
+  Box box() const override {
+    const LAMMPS_NS::Domain& d = *lmp_->domain;
+    Box b;
+    b.lo = Vec3(d.boxlo[0], d.boxlo[1], d.boxlo[2]);
+    b.hi = Vec3(d.boxhi[0], d.boxhi[1], d.boxhi[2]);
+    b.xy = d.xy;
+    b.xz = d.xz;
+    b.yz = d.yz;
+    return b;
+  }
+
+  long atom_count() const override { return lammps_get_natoms(handle()); }
+
+  std::vector<Contact> contacts() override;
+
+ private:
+  // LIGGGHTS 3.8's Domain constructor leaves prd_lamda and prd_half_lamda at 0 (LAMMPS sets
+  // 1 and 0.5, the size of the unit "lamda" box). Triclinic boxes work in lamda coordinates,
+  // so with zeros the ghost cutoff and periodic remapping collapse: no ghost atoms, atoms
+  // lost, and a hang on 2 ranks, all without an error. Nothing resets these values later, so
+  // setting them once per instance, before any command, is enough (tests/dem shows the defect
+  // without this and its absence with it).
+  void correct_triclinic_lamda_box() {
+    for (int i = 0; i < 3; ++i) {
+      lmp_->domain->prd_lamda[i] = 1.0;
+      lmp_->domain->prd_half_lamda[i] = 0.5;
+    }
+  }
+
+  void define_contact_compute();
+
+  LAMMPS_NS::LAMMPS* lmp_ = nullptr;
+  LAMMPS_NS::Compute* contact_compute_ = nullptr;
+};
+
+// compute pair/gran/local refuses to be created after the first run ("Need to define this
+// compute before first run") because it can then miss a neighbour-list request; with `id
+// force` it only reads the pair style's own list, so defining it later is safe. We lift the
+// check by presenting step 0 while the compute is created.
+void LiggghtsEngine::define_contact_compute() {
+  const LAMMPS_NS::bigint step = lmp_->update->ntimestep;
+  lmp_->update->ntimestep = 0;
+  command(std::string("compute ") + kContactCompute + " all pair/gran/local id force");
+  lmp_->update->ntimestep = step;
+  contact_compute_ = lmp_->modify->compute[lmp_->modify->find_compute(kContactCompute)];
+}
+
+// Rows of pair/gran/local with `id force`: id_i, id_j, periodic flag, force on i (3). The
+// positions it reports are wrapped into the box, so the branch vector comes from the minimum
+// image of x_j - x_i instead.
+std::vector<Contact> LiggghtsEngine::contacts() {
+  if (!contact_compute_)
+    define_contact_compute();
+  constexpr int kColumns = 6;
+  lammps_extract_compute(handle(), const_cast<char*>(kContactCompute), 2, 2);  // evaluate
+  const std::vector<double> rows =
+      gather_local_array(kContactCompute, contact_compute_->size_local_rows, kColumns);
+  const std::vector<Vec3> x = positions_by_id();
+  const Mat3 h = box().h();
+  std::vector<Contact> result(rows.size() / kColumns);
+  for (std::size_t k = 0; k < result.size(); ++k) {
+    const double* row = &rows[k * kColumns];
+    Contact& c = result[k];
+    c.id_i = static_cast<long>(row[0]);
+    c.id_j = static_cast<long>(row[1]);
+    c.force = Vec3(row[3], row[4], row[5]);
+    c.branch = minimum_image(x[c.id_j - 1] - x[c.id_i - 1], h);
+  }
+  return result;
+}
+
+}  // namespace
+}  // namespace mpm_lig::dem::detail
+
+extern "C" __attribute__((visibility("default"))) mpm_lig::dem::detail::ModuleEngine*
+mpm_lig_create_engine(MPI_Comm comm, const mpm_lig::dem::EngineOptions* options,
+                      const mpm_lig::dem::detail::ModuleOptions* module_options) {
+  return new mpm_lig::dem::detail::LiggghtsEngine(comm, *options, *module_options);
+}
