@@ -11,10 +11,6 @@ namespace {
 const GuardedEngine* g_current = nullptr;  // the instance inside an engine call, if any
 constexpr int kReportLines = 25;
 
-bool mentions_restart(const std::string& text) {
-  return text.find("read_restart") != std::string::npos;
-}
-
 std::string last_lines(const std::string& text, int count) {
   std::size_t pos = text.size();
   if (pos > 0 && text[pos - 1] == '\n')
@@ -65,19 +61,20 @@ std::string GuardedEngine::name() const {
 
 void GuardedEngine::command(const std::string& line) {
   Scope scope(this);
-  if (!mentions_restart(line))
-    return impl_->command(line);
-  FdCapture capture(true, false);
-  impl_->command(line);
-  impl_->record_output(capture.finish());
+  with_restart_capture(line, [&] { impl_->command(line); });
 }
 
 void GuardedEngine::commands(const std::string& script) {
   Scope scope(this);
-  if (!mentions_restart(script))
-    return impl_->commands(script);
+  with_restart_capture(script, [&] { impl_->commands(script); });
+}
+
+template <class Call>
+void GuardedEngine::with_restart_capture(const std::string& input, Call call) {
+  if (input.find("read_restart") == std::string::npos)
+    return call();
   FdCapture capture(true, false);
-  impl_->commands(script);
+  call();
   impl_->record_output(capture.finish());
 }
 

@@ -39,6 +39,10 @@ class GuardedEngine final : public Engine {
 
  private:
   class Scope;
+  //! Run `call`, capturing stdout into the engine's record if `input` reads a restart file.
+  template <class Call>
+  void with_restart_capture(const std::string& input, Call call);
+
   std::unique_ptr<ModuleEngine> impl_;
   EngineOptions options_;
   MPI_Comm comm_;
