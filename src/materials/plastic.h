@@ -1,0 +1,72 @@
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "materials/continuum.h"
+#include "materials/mohr_coulomb_return.h"
+
+namespace mpm_lig::materials {
+
+//! A continuum material with accumulated plastic strains as output state:
+//! "plastic_strain" ε_q^p = Σ √(2/3 Δe^p:Δe^p) (deviatoric) and "plastic_volumetric_strain"
+//! ε_v^p = Σ tr Δε^p (dilation positive).
+class PlasticMaterial : public ContinuumMaterial {
+ public:
+  using ContinuumMaterial::ContinuumMaterial;
+
+  std::vector<std::string> state_names() const override {
+    return {"plastic_strain", "plastic_volumetric_strain"};
+  }
+  double state(std::size_t point, std::size_t k) const override;
+
+ protected:
+  void resize_state(std::size_t count) override { plastic_.resize(count, Eigen::Vector2d::Zero()); }
+  //! Accumulate the principal plastic strain increment of a return at `point`.
+  void accumulate(std::size_t point, const Vec3& plastic_principal);
+  //! Accumulate plastic strain increments given as (Δε_q^p, Δε_v^p).
+  void add_plastic(std::size_t point, double deviatoric, double volumetric) {
+    plastic_[point] += Eigen::Vector2d(deviatoric, volumetric);
+  }
+
+ private:
+  std::vector<Eigen::Vector2d> plastic_;  // (ε_q^p, ε_v^p) per point
+};
+
+//! "von_mises": perfectly plastic J2 with radial return; yield at q = q_y.
+class VonMises : public PlasticMaterial {
+ public:
+  VonMises(double density, const Elasticity& elasticity, double yield_stress)
+      : PlasticMaterial(density, elasticity), yield_stress_(yield_stress) {}
+  std::string type() const override { return "von_mises"; }
+  double yield_stress() const { return yield_stress_; }
+
+ protected:
+  Mat3 correct(std::size_t point, const Mat3& trial) override;
+
+ private:
+  double yield_stress_;
+};
+
+//! "mohr_coulomb" (and "tresca" as its φ = ψ = 0 case): perfectly plastic, non-associated
+//! flow with dilatancy ψ, return in principal stress space (plane, edge, apex).
+class MohrCoulomb : public PlasticMaterial {
+ public:
+  MohrCoulomb(std::string type, double density, const Elasticity& elasticity,
+              const MohrCoulombStrength& strength)
+      : PlasticMaterial(density, elasticity), type_(std::move(type)), strength_(strength) {}
+
+  std::string type() const override { return type_; }
+  const MohrCoulombStrength& strength() const { return strength_; }
+
+ protected:
+  Mat3 correct(std::size_t point, const Mat3& trial) override;
+
+ private:
+  std::string type_;
+  MohrCoulombStrength strength_;
+};
+
+}  // namespace mpm_lig::materials
