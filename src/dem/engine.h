@@ -61,7 +61,12 @@ class Engine {
   //! Per-atom property gathered on every rank of the instance, ordered by atom id
   //! (`name` as in lammps_gather_atoms: "x", "v", "radius", ...; `count` values per atom).
   virtual std::vector<double> gather_atoms(const std::string& name, int count) = 0;
-  //! All contacts with their forces (for Σ r⊗f / V and force-chain snapshots).
+  //! All contacts with their forces (for Σ r⊗f / V and force-chain snapshots), on every rank
+  //! of the instance. Forces are evaluated at the current positions and velocities, without
+  //! touching the contact history (LIGGGHTS: compute pair/gran/local; LAMMPS: compute
+  //! pair/local + property/local, set up by a `run 0 post no` at the first call). The virial
+  //! of the last step used mid-step velocities in its damping terms: after a `run 0` both agree
+  //! to round-off. Needs a run since the pair style was defined.
   virtual std::vector<Contact> contacts() = 0;
 
   //! The last lines the engine printed (kept in memory even when its screen is off).
