@@ -1,10 +1,17 @@
 #pragma once
 
+#include <memory>
+
 #include "core/analysis.h"
+#include "materials/material.h"
 
 namespace mpm_lig::mpm {
 
 //! Adds the MPM analyses ("mpm") to `registry`.
 void register_analyses(AnalysisRegistry& registry);
+
+//! The "mpm" analysis for `root`, its materials taken from `materials` (tests add their own).
+std::unique_ptr<Analysis> make_analysis(const CaseNode& root,
+                                        const materials::MaterialRegistry& materials);
 
 }  // namespace mpm_lig::mpm

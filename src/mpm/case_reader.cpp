@@ -1,0 +1,281 @@
+// Reading and validating an "mpm" case: every check happens here, before anything is built.
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "mpm/case_spec.h"
+#include "mpm/shape_function.h"
+
+namespace mpm_lig::mpm {
+
+bool Box::contains(const double* x, int dimension, double tolerance) const {
+  for (int d = 0; d < dimension; ++d) {
+    if (x[d] < min[d] - tolerance || x[d] > max[d] + tolerance)
+      return false;
+  }
+  return true;
+}
+
+namespace {
+
+const std::vector<std::string> kAxes = {"x", "y", "z"};
+
+std::vector<std::string> axes(int dimension) {
+  return {kAxes.begin(), kAxes.begin() + dimension};
+}
+
+int read_axis(const CaseNode& node, const std::string& key, int dimension) {
+  const std::string name = node.choice(key, axes(dimension));
+  return static_cast<int>(std::find(kAxes.begin(), kAxes.end(), name) - kAxes.begin());
+}
+
+std::vector<double> read_vector(const CaseNode& node, const std::string& key, std::size_t size) {
+  const auto v = node.get<std::vector<double>>(key);
+  if (v.size() != size) {
+    node.fail(key, "expected " + std::to_string(size) + " numbers (one per axis), got " +
+                       std::to_string(v.size()));
+  }
+  return v;
+}
+
+Box read_box(const CaseNode& node, const std::string& key, int dimension) {
+  const CaseNode b = node.child(key);
+  Box box{read_vector(b, "min", dimension), read_vector(b, "max", dimension)};
+  for (int d = 0; d < dimension; ++d) {
+    if (!(box.min[d] < box.max[d]))
+      b.fail("max", "must be greater than min along " + kAxes[d]);
+  }
+  return box;
+}
+
+//! A box that must lie inside the grid.
+Box read_box_in_grid(const CaseNode& node, const std::string& key, const MpmCase& c) {
+  Box box = read_box(node, key, c.dimension);
+  for (int d = 0; d < c.dimension; ++d) {
+    const double tol = 1e-9 * c.size[d];
+    if (box.min[d] < c.origin[d] - tol || box.max[d] > c.origin[d] + c.size[d] + tol)
+      node.child(key).fail("lies outside the mesh along " + kAxes[d]);
+  }
+  return box;
+}
+
+void read_analysis(const CaseNode& a, MpmCase& c) {
+  c.musl = a.choice_or("scheme", {"musl", "usl"}, "musl") == "musl";
+  c.shape_function = a.choice_or("shape_function", shape_registry().names(), "linear");
+  c.flip = a.in_range_or("flip", 0.0, 1.0, 1.0);
+  c.damping = a.in_range_or("damping", 0.0, 0.9, 0.0);
+  c.mass_scaling = a.get_or<double>("mass_scaling", 1.0);
+  if (c.mass_scaling < 1.0)
+    a.fail("mass_scaling", "must be >= 1");
+  c.volumetric_smoothing = a.get_or<bool>("volumetric_smoothing", false);
+
+  const CaseNode ts = a.child("time_step");
+  if (ts.has("fixed") == ts.has("cfl"))
+    ts.fail("give exactly one of \"cfl\" or \"fixed\"");
+  c.fixed_time_step = ts.has("fixed");
+  if (c.fixed_time_step)
+    c.time_step = ts.positive("fixed");
+  else
+    c.cfl = ts.in_range("cfl", 1e-6, 1.0);
+
+  const CaseNode end = a.child("end");
+  if (end.has("time") == end.has("steps"))
+    end.fail("give exactly one of \"time\" or \"steps\"");
+  if (end.has("time"))
+    c.end_time = end.positive("time");
+  else if ((c.end_steps = end.get<long>("steps")) < 1)
+    end.fail("steps", "must be >= 1");
+
+  if (a.has("gravity_stage")) {
+    const CaseNode g = a.child("gravity_stage");
+    if ((c.gravity_stage_steps = g.get<long>("steps")) < 1)
+      g.fail("steps", "must be >= 1");
+    c.gravity_stage_damping = g.in_range_or("damping", 0.0, 0.9, 0.1);
+  }
+}
+
+void read_mesh(const CaseNode& m, MpmCase& c) {
+  c.origin = read_vector(m, "origin", c.dimension);
+  c.size = read_vector(m, "size", c.dimension);
+  const auto cells = m.get<std::vector<int>>("cells");
+  if (cells.size() != static_cast<std::size_t>(c.dimension))
+    m.fail("cells", "expected " + std::to_string(c.dimension) + " integers (one per axis)");
+  for (int d = 0; d < c.dimension; ++d) {
+    if (!(c.size[d] > 0.0))
+      m.fail("size", "must be > 0 along " + kAxes[d]);
+    if (cells[d] < 1 || cells[d] > 100000)
+      m.fail("cells", "must be between 1 and 100000 along " + kAxes[d]);
+  }
+  c.cells = cells;
+}
+
+void read_materials(const CaseNode& root, const materials::MaterialRegistry& registry, MpmCase& c) {
+  const auto nodes = root.children("materials");
+  if (nodes.empty())
+    root.fail("materials", "needs at least one material");
+  for (const CaseNode& m : nodes) {
+    const int id = m.get<int>("id");
+    if (std::count(c.material_ids.begin(), c.material_ids.end(), id) != 0)
+      m.fail("id", "material id " + std::to_string(id) + " is used twice");
+    c.material_ids.push_back(id);
+    c.materials.push_back(registry.create(m, "type", m));
+  }
+}
+
+int material_index(const CaseNode& node, const std::string& key, const MpmCase& c) {
+  const int id = node.get<int>(key);
+  const auto it = std::find(c.material_ids.begin(), c.material_ids.end(), id);
+  if (it == c.material_ids.end())
+    node.fail(key, "no material with id " + std::to_string(id));
+  return static_cast<int>(it - c.material_ids.begin());
+}
+
+bool overlap(const Box& a, const Box& b, int dimension) {
+  for (int d = 0; d < dimension; ++d) {
+    if (a.max[d] <= b.min[d] || b.max[d] <= a.min[d])
+      return false;
+  }
+  return true;
+}
+
+void read_bodies(const CaseNode& root, MpmCase& c) {
+  const auto nodes = root.children("bodies");
+  if (nodes.empty())
+    root.fail("bodies", "needs at least one body");
+  for (const CaseNode& b : nodes) {
+    Body body;
+    body.material = material_index(b, "material", c);
+    body.box = read_box_in_grid(b, "box", c);
+    body.points_per_cell = b.get_or<int>("points_per_cell", 2);
+    if (body.points_per_cell < 1 || body.points_per_cell > 6)
+      b.fail("points_per_cell", "must be between 1 and 6");
+    body.velocity = b.has("velocity") ? read_vector(b, "velocity", c.dimension)
+                                      : std::vector<double>(c.dimension, 0.0);
+    if (b.has("velocity_profile")) {
+      const CaseNode p = b.child("velocity_profile");
+      p.choice("type", {"axial_mode"});
+      body.has_profile = true;
+      body.profile_amplitude = read_vector(p, "amplitude", c.dimension);
+      body.profile_axis = read_axis(p, "axis", c.dimension);
+      body.profile_start = p.get<double>("start");
+      body.profile_length = p.positive("length");
+    }
+    for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+      if (overlap(body.box, c.bodies[k].box, c.dimension))
+        b.fail("box", "overlaps bodies[" + std::to_string(k) + "]");
+    }
+    c.bodies.push_back(std::move(body));
+  }
+}
+
+NodeSelector read_nodes(const CaseNode& node, const MpmCase& c) {
+  const CaseNode n = node.child("nodes");
+  if (n.has("box") == n.has("face"))
+    n.fail("give exactly one of \"box\" or \"face\"");
+  NodeSelector s;
+  if (n.has("box")) {
+    s.box = read_box(n, "box", c.dimension);
+    return s;
+  }
+  std::vector<std::string> faces;
+  for (const auto& axis : axes(c.dimension)) {
+    faces.push_back(axis + "-");
+    faces.push_back(axis + "+");
+  }
+  const std::string face = n.choice("face", faces);
+  s.by_face = true;
+  s.axis =
+      static_cast<int>(std::find(kAxes.begin(), kAxes.end(), face.substr(0, 1)) - kAxes.begin());
+  s.upper = face[1] == '+';
+  return s;
+}
+
+void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
+  if (!root.has("boundary_conditions"))
+    return;
+  int index = -1;
+  for (const CaseNode& b : root.children("boundary_conditions")) {
+    ++index;
+    const std::string type = b.choice("type", {"fixed", "roller", "velocity", "traction"});
+    if (type == "traction") {
+      Traction t;
+      t.points = read_box(b, "points", c.dimension);
+      t.traction = read_vector(b, "traction", c.dimension);
+      t.function = TimeFunction::read(b, "function");
+      c.tractions.push_back(std::move(t));
+      continue;
+    }
+    Constraint k;
+    k.case_index = index;
+    k.nodes = read_nodes(b, c);
+    k.type = type == "fixed"    ? Constraint::Type::fixed
+             : type == "roller" ? Constraint::Type::roller
+                                : Constraint::Type::velocity;
+    if (k.type != Constraint::Type::fixed)
+      k.direction = read_axis(b, "direction", c.dimension);
+    if (k.type == Constraint::Type::velocity) {
+      k.velocity = b.get<double>("velocity");
+      k.function = TimeFunction::read(b, "function");
+    }
+    c.constraints.push_back(std::move(k));
+  }
+}
+
+void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
+  if (!root.has("rigid_bodies"))
+    return;
+  const int h = c.dimension - 1;  // horizontal axes
+  for (const CaseNode& r : root.children("rigid_bodies")) {
+    r.choice("type", {"footing"});
+    Footing f;
+    f.center = read_vector(r, "center", h);
+    f.width = read_vector(r, "width", h);
+    for (int d = 0; d < h; ++d) {
+      if (!(f.width[d] > 0.0))
+        r.fail("width", "must be > 0");
+      if (f.center[d] + 0.5 * f.width[d] <= c.origin[d] ||
+          f.center[d] - 0.5 * f.width[d] >= c.origin[d] + c.size[d])
+        r.fail("center", "the footing lies outside the mesh along " + kAxes[d]);
+    }
+    f.base = r.get<double>("base");
+    if (f.base < c.origin[h] || f.base > c.origin[h] + c.size[h])
+      r.fail("base", "lies outside the mesh");
+    f.velocity = r.get<double>("velocity");
+    f.function = TimeFunction::read(r, "function");
+    f.rough = r.choice("interface", {"rough", "smooth"}) == "rough";
+    c.footings.push_back(std::move(f));
+  }
+}
+
+void read_output(const CaseNode& root, MpmCase& c) {
+  if (!root.has("output"))
+    return;
+  const CaseNode o = root.child("output");
+  if ((c.output_every = o.get_or<long>("every", 100)) < 1)
+    o.fail("every", "must be >= 1");
+  if ((c.history_every = o.get_or<long>("history_every", 1)) < 1)
+    o.fail("history_every", "must be >= 1");
+  c.write_fields = o.get_or<bool>("fields", true);
+}
+
+}  // namespace
+
+MpmCase read_case(const CaseNode& root, const materials::MaterialRegistry& registry) {
+  MpmCase c;
+  c.title = root.get_or<std::string>("title", "");
+  c.dimension = root.get<int>("dimension");
+  if (c.dimension != 2 && c.dimension != 3)
+    root.fail("dimension", "must be 2 (plane strain) or 3");
+  read_analysis(root.child("analysis"), c);
+  read_mesh(root.child("mesh"), c);
+  c.gravity = root.has("gravity") ? read_vector(root, "gravity", c.dimension)
+                                  : std::vector<double>(c.dimension, 0.0);
+  read_materials(root, registry, c);
+  read_bodies(root, c);
+  read_boundary_conditions(root, c);
+  read_rigid_bodies(root, c);
+  read_output(root, c);
+  return c;
+}
+
+}  // namespace mpm_lig::mpm

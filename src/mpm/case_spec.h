@@ -1,0 +1,111 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/case_node.h"
+#include "materials/material.h"
+#include "mpm/time_function.h"
+
+namespace mpm_lig::mpm {
+
+//! An axis-aligned box; `min`/`max` have `dimension` entries.
+struct Box {
+  std::vector<double> min, max;
+  bool contains(const double* x, int dimension, double tolerance) const;
+};
+
+//! A set of grid nodes: those in a box, or those on a face of the grid.
+struct NodeSelector {
+  bool by_face = false;
+  Box box;
+  int axis = 0;        //!< face normal axis
+  bool upper = false;  //!< face at the upper end of `axis`
+};
+
+//! A velocity constraint on a node set (fixed, roller, or prescribed velocity).
+struct Constraint {
+  enum class Type { fixed, roller, velocity };
+  Type type = Type::fixed;
+  NodeSelector nodes;
+  int direction = 0;      //!< roller and velocity: the constrained axis
+  double velocity = 0.0;  //!< velocity: value times `function(t)` [m/s]
+  TimeFunction function;
+  int case_index = 0;  //!< position in boundary_conditions (names its history columns)
+};
+
+//! A traction on the material points whose initial position lies in `points`: force per
+//! point = traction × point face area (V0^((D-1)/D)) × function(t).
+struct Traction {
+  Box points;
+  std::vector<double> traction;  //!< [Pa], one entry per axis
+  TimeFunction function;
+};
+
+//! A rigid strip (2D) or rectangular (3D) footing pushed down the last axis.
+struct Footing {
+  std::vector<double> center;  //!< horizontal centre (D-1 entries)
+  std::vector<double> width;   //!< horizontal sizes B (and L in 3D)
+  double base = 0.0;           //!< initial height of its base [m]
+  double velocity = 0.0;       //!< downward speed times `function(t)` [m/s]
+  TimeFunction function;
+  bool rough = true;
+};
+
+//! Material points filling a box, with an initial velocity.
+struct Body {
+  int material = 0;  //!< index into MpmCase::materials
+  Box box;
+  int points_per_cell = 2;
+  std::vector<double> velocity;  //!< uniform part
+  //! First axial mode: v += amplitude sin(pi/2 (x_axis - start) / length).
+  bool has_profile = false;
+  std::vector<double> profile_amplitude;
+  int profile_axis = 0;
+  double profile_start = 0.0, profile_length = 1.0;
+};
+
+//! Everything an MPM run needs, validated; dimension-independent plain data.
+struct MpmCase {
+  std::string title;
+  int dimension = 2;
+
+  // analysis
+  bool musl = true;
+  std::string shape_function = "linear";
+  double flip = 1.0;  //!< FLIP fraction of the particle velocity update (1 = FLIP, 0 = PIC)
+  double damping = 0.0;
+  double mass_scaling = 1.0;
+  bool volumetric_smoothing = false;
+  bool fixed_time_step = false;
+  double cfl = 0.5;
+  double time_step = 0.0;
+  double end_time = 0.0;  //!< 0 when the run ends by step count
+  long end_steps = 0;     //!< 0 when the run ends by time
+  long gravity_stage_steps = 0;
+  double gravity_stage_damping = 0.0;
+
+  // mesh
+  std::vector<double> origin, size;
+  std::vector<int> cells;
+
+  std::vector<double> gravity;
+  std::vector<std::unique_ptr<materials::Material>> materials;
+  std::vector<int> material_ids;  //!< the case file's "id" of each material
+  std::vector<Body> bodies;
+  std::vector<Constraint> constraints;
+  std::vector<Traction> tractions;
+  std::vector<Footing> footings;
+
+  // output
+  long output_every = 100;
+  long history_every = 1;
+  bool write_fields = true;
+};
+
+//! Read and validate the whole case (everything but "title" and "analysis.type", which the
+//! application reads). Every problem is a CaseError with its JSON path.
+MpmCase read_case(const CaseNode& root, const materials::MaterialRegistry& registry);
+
+}  // namespace mpm_lig::mpm

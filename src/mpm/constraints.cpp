@@ -1,0 +1,65 @@
+#include "mpm/constraints.h"
+
+namespace mpm_lig::mpm {
+
+template <int D>
+std::vector<long> select_nodes(const NodeSelector& selector, const Grid<D>& grid) {
+  std::vector<long> out;
+  for (long id = 0; id < static_cast<long>(grid.node_count()); ++id) {
+    const auto index = grid.node_index(id);
+    if (selector.by_face) {
+      const long want = selector.upper ? grid.cells(selector.axis) : 0;
+      if (index[selector.axis] == want)
+        out.push_back(id);
+      continue;
+    }
+    const auto x = grid.node_position(id);
+    if (selector.box.contains(x.data(), D, 1e-9 * grid.min_cell()))
+      out.push_back(id);
+  }
+  return out;
+}
+
+template <int D>
+NodeConstraints<D>::NodeConstraints(const std::vector<Constraint>& constraints,
+                                    const Grid<D>& grid) {
+  for (const Constraint& c : constraints)
+    sets_.push_back({c, select_nodes(c.nodes, grid)});
+  reactions_.assign(sets_.size(), Vec::Zero());
+}
+
+template <int D>
+void NodeConstraints<D>::apply(Grid<D>& grid, double t, double scale, double dt, bool record) {
+  for (std::size_t k = 0; k < sets_.size(); ++k) {
+    const Constraint& c = sets_[k].spec;
+    Vec reaction = Vec::Zero();
+    for (const long node : sets_[k].nodes) {
+      const double m = grid.mass[node];
+      if (m <= 0.0)
+        continue;
+      Vec& v = grid.velocity_new[node];
+      const Vec trial = v;
+      switch (c.type) {
+        case Constraint::Type::fixed:
+          v.setZero();
+          break;
+        case Constraint::Type::roller:
+          v[c.direction] = 0.0;
+          break;
+        case Constraint::Type::velocity:
+          v[c.direction] = scale * c.velocity * c.function.at(t);
+          break;
+      }
+      reaction += m * (v - trial) / dt;
+    }
+    if (record)
+      reactions_[k] = reaction;
+  }
+}
+
+template class NodeConstraints<2>;
+template class NodeConstraints<3>;
+template std::vector<long> select_nodes<2>(const NodeSelector&, const Grid<2>&);
+template std::vector<long> select_nodes<3>(const NodeSelector&, const Grid<3>&);
+
+}  // namespace mpm_lig::mpm

@@ -1,0 +1,65 @@
+#include "mpm/footing.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mpm_lig::mpm {
+
+template <int D>
+RigidFooting<D>::RigidFooting(const Footing& spec, const Grid<D>& grid) : spec_(spec) {
+  const double tol = 1e-9 * grid.min_cell();
+  for (int d = 0; d < D - 1; ++d) {
+    const double lo = std::max(spec.center[d] - 0.5 * spec.width[d], grid.origin()[d]);
+    const double hi =
+        std::min(spec.center[d] + 0.5 * spec.width[d], grid.origin()[d] + grid.size()[d]);
+    area_ *= hi - lo;
+  }
+  for (long id = 0; id < static_cast<long>(grid.node_count()); ++id) {
+    const Vec x = grid.node_position(id);
+    bool inside = true;
+    for (int d = 0; d < D - 1; ++d)
+      inside = inside && std::abs(x[d] - spec.center[d]) <= 0.5 * spec.width[d] + tol;
+    if (inside)
+      footprint_.push_back(id);
+  }
+}
+
+template <int D>
+void RigidFooting<D>::apply(Grid<D>& grid, double t, double scale, double dt, bool record) {
+  constexpr int up = D - 1;
+  const double h = grid.cell()[up];
+  const double vf = -speed(t, scale);
+  const double base_now = base();
+  Vec reaction = Vec::Zero();
+  for (const long node : footprint_) {
+    const double m = grid.mass[node];
+    if (m <= 0.0)
+      continue;
+    const double y = grid.origin()[up] + grid.node_index(node)[up] * h;
+    const double w = std::clamp(1.0 - (base_now - y) / h, 0.0, 1.0);
+    Vec& v = grid.velocity_new[node];
+    if (w <= 0.0 || v[up] <= vf)  // not reached, or the material moves away from the base
+      continue;
+    const Vec trial = v;
+    v[up] = (1.0 - w) * v[up] + w * vf;
+    if (spec_.rough) {
+      for (int d = 0; d < up; ++d)
+        v[d] = (1.0 - w) * v[d];
+    }
+    reaction += m * (v - trial) / dt;
+  }
+  if (record) {
+    load_ = -reaction[up];
+    reaction_ = reaction;
+  }
+}
+
+template <int D>
+void RigidFooting<D>::advance(double t, double scale, double dt) {
+  settlement_ += speed(t, scale) * dt;
+}
+
+template class RigidFooting<2>;
+template class RigidFooting<3>;
+
+}  // namespace mpm_lig::mpm

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "mpm/case_spec.h"
+#include "mpm/grid.h"
+
+namespace mpm_lig::mpm {
+
+//! A rigid footing pushed down the last axis at a prescribed speed.
+//!
+//! It acts on the grid: nodes inside its footprint at or above its base take its velocity
+//! when the material there pushes against it (unilateral contact: the soil may move away,
+//! never pull). The base moves continuously through the fixed grid, so the node row just
+//! below it is blended in with weight 1 - (base - y)/h: without this the load jumps every
+//! time the base crosses a node row. Rough: the horizontal velocity is the footing's too;
+//! smooth: only the normal component is imposed.
+template <int D>
+class RigidFooting {
+ public:
+  using Vec = Eigen::Matrix<double, D, 1>;
+
+  RigidFooting(const Footing& spec, const Grid<D>& grid);
+
+  //! Impose the footing on `grid.velocity_new`; with `record`, store its reaction.
+  void apply(Grid<D>& grid, double t, double scale, double dt, bool record);
+  //! Move the base by one step.
+  void advance(double t, double scale, double dt);
+
+  //! Downward velocity at time t [m/s].
+  double speed(double t, double scale) const {
+    return scale * spec_.velocity * spec_.function.at(t);
+  }
+  double settlement() const { return settlement_; }
+  double base() const { return spec_.base - settlement_; }
+  //! Force the footing exerts on the material along -last axis (positive pushing) [N,
+  //! per unit thickness in 2D], from the part of the footing inside the mesh.
+  double load() const { return load_; }
+  //! Horizontal reaction force (rough footings) [N].
+  const Vec& reaction() const { return reaction_; }
+  //! Footprint area inside the mesh (its width in 2D) [m^(D-1)].
+  double contact_area() const { return area_; }
+
+ private:
+  Footing spec_;
+  std::vector<long> footprint_;  // nodes whose horizontal position lies under the footing
+  double area_ = 1.0;
+  double settlement_ = 0.0;
+  double load_ = 0.0;
+  Vec reaction_ = Vec::Zero();
+};
+
+}  // namespace mpm_lig::mpm

@@ -1,0 +1,67 @@
+#include "mpm/particles.h"
+
+#include <cmath>
+
+namespace mpm_lig::mpm {
+namespace {
+
+template <int D>
+void fill_body(const MpmCase& c, int body_index, Particles<D>& p) {
+  using Vec = typename Particles<D>::Vec;
+  const Body& body = c.bodies[body_index];
+  materials::Material& material = *c.materials[body.material];
+  std::array<long, D> count{};
+  Vec spacing, cell;
+  long total = 1;
+  for (int d = 0; d < D; ++d) {
+    cell[d] = c.size[d] / c.cells[d];
+    const double extent = body.box.max[d] - body.box.min[d];
+    count[d] = std::max(1L, std::lround(extent / cell[d] * body.points_per_cell));
+    spacing[d] = extent / count[d];
+    total *= count[d];
+  }
+  const double volume = spacing.prod();
+  const std::size_t first = material.add_points(static_cast<std::size_t>(total));
+  for (long k = 0; k < total; ++k) {
+    Vec x;
+    long rest = k;
+    for (int d = 0; d < D; ++d) {
+      x[d] = body.box.min[d] + (rest % count[d] + 0.5) * spacing[d];
+      rest /= count[d];
+    }
+    Vec v = Eigen::Map<const Vec>(body.velocity.data());
+    if (body.has_profile) {
+      const double s =
+          std::sin(0.5 * M_PI * (x[body.profile_axis] - body.profile_start) / body.profile_length);
+      v += s * Eigen::Map<const Vec>(body.profile_amplitude.data());
+    }
+    p.position.push_back(x);
+    p.reference.push_back(x);
+    p.velocity.push_back(v);
+    p.half_length.push_back(0.5 * spacing.cwiseQuotient(cell));
+    p.external_force.push_back(Vec::Zero());
+    p.mass.push_back(material.density() * volume);
+    p.volume.push_back(volume);
+    p.volume0.push_back(volume);
+    p.deformation.push_back(Mat3::Identity());
+    p.stress.push_back(Mat3::Zero());
+    p.material.push_back(body.material);
+    p.material_point.push_back(first + static_cast<std::size_t>(k));
+    p.body.push_back(body_index);
+  }
+}
+
+}  // namespace
+
+template <int D>
+Particles<D> generate_particles(MpmCase& c) {
+  Particles<D> p;
+  for (int b = 0; b < static_cast<int>(c.bodies.size()); ++b)
+    fill_body<D>(c, b, p);
+  return p;
+}
+
+template Particles<2> generate_particles<2>(MpmCase&);
+template Particles<3> generate_particles<3>(MpmCase&);
+
+}  // namespace mpm_lig::mpm

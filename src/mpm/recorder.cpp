@@ -1,0 +1,157 @@
+#include "mpm/recorder.h"
+
+#include <cstdio>
+
+#include "io/summary.h"
+#include "mpm/point_fields.h"
+
+namespace mpm_lig::mpm {
+namespace {
+
+const char* const kAxisNames[] = {"x", "y", "z"};
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+std::string footing_prefix(std::size_t k) {
+  return k == 0 ? "" : "footing" + std::to_string(k) + "_";
+}
+
+}  // namespace
+
+template <int D>
+std::vector<std::string> Recorder<D>::history_columns(const MpmCase& c) {
+  std::vector<std::string> columns = {"step", "time", "kinetic_energy"};
+  for (std::size_t k = 0; k < c.footings.size(); ++k) {
+    for (const char* name : {"settlement", "load", "q"})
+      columns.push_back(footing_prefix(k) + name);
+  }
+  for (const Constraint& bc : c.constraints) {
+    for (int d = 0; d < D; ++d)
+      columns.push_back("bc" + std::to_string(bc.case_index) + "_f" + kAxisNames[d]);
+  }
+  return columns;
+}
+
+template <int D>
+std::vector<double> Recorder<D>::history_row(const Solver<D>& solver) {
+  std::vector<double> row = {static_cast<double>(solver.steps()), solver.time(),
+                             solver.kinetic_energy()};
+  for (const auto& f : solver.footings()) {
+    row.push_back(f.settlement());
+    row.push_back(f.load());
+    row.push_back(f.load() / f.contact_area());
+  }
+  for (std::size_t k = 0; k < solver.constraints().count(); ++k) {
+    for (int d = 0; d < D; ++d)
+      row.push_back(solver.constraints().reaction(k)[d]);
+  }
+  return row;
+}
+
+template <int D>
+Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::string& directory,
+                      long total_steps)
+    : directory_(directory),
+      output_every_(c.output_every),
+      history_every_(c.history_every),
+      total_steps_(total_steps),
+      material_ids_(c.material_ids),
+      history_(directory + "/history.csv", history_columns(c)),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {
+  if (c.write_fields)
+    fields_ = std::make_unique<io::FieldWriter>(directory, "results");
+  after_step(solver);
+}
+
+template <int D>
+void Recorder<D>::after_step(const Solver<D>& solver) {
+  const long step = solver.steps();
+  for (const auto& f : solver.footings())
+    peak_q_ = std::max(peak_q_, f.load() / f.contact_area());
+  if (step % history_every_ == 0 || step == total_steps_)
+    history_.write(history_row(solver));
+  if (step % output_every_ == 0 || step == total_steps_) {
+    if (fields_)
+      write_fields(solver);
+    if (step > 0)
+      print_progress(solver);
+  }
+}
+
+template <int D>
+void Recorder<D>::write_fields(const Solver<D>& solver) {
+  const Particles<D>& p = solver.particles();
+  const std::size_t n = p.size();
+  std::vector<Vec3> position(n), displacement(n), velocity(n);
+  std::vector<Mat3> strain(n);
+  std::vector<double> eps_q(n);
+  std::vector<int> material(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    position[k].setZero();
+    displacement[k].setZero();
+    velocity[k].setZero();
+    position[k].template head<D>() = p.position[k];
+    displacement[k].template head<D>() = p.position[k] - p.reference[k];
+    velocity[k].template head<D>() = p.velocity[k];
+    strain[k] = hencky_strain(p.deformation[k]);
+    eps_q[k] = deviatoric_strain(strain[k]);
+    material[k] = material_ids_[p.material[k]];
+  }
+  fields_->begin_step(solver.steps(), solver.time(), position);
+  fields_->add_vector("displacement", displacement);
+  fields_->add_vector("velocity", velocity);
+  fields_->add_tensor("stress", p.stress);
+  fields_->add_tensor("strain", strain);
+  fields_->add_scalar("deviatoric_strain", eps_q);
+  fields_->add_scalar("volume", p.volume);
+  fields_->add_int("material", material);
+  // Material state variables (plastic strain, ...): zero on points of other materials.
+  for (std::size_t m = 0; m < solver.materials().size(); ++m) {
+    const auto& mat = *solver.materials()[m];
+    const auto names = mat.state_names();
+    for (std::size_t s = 0; s < names.size(); ++s) {
+      std::vector<double> values(n, 0.0);
+      for (std::size_t k = 0; k < n; ++k) {
+        if (p.material[k] == static_cast<int>(m))
+          values[k] = mat.state(p.material_point[k], s);
+      }
+      fields_->add_scalar(names[s] + "_m" + std::to_string(material_ids_[m]), values);
+    }
+  }
+  fields_->end_step();
+}
+
+template <int D>
+void Recorder<D>::print_progress(const Solver<D>& solver) {
+  const double interval = seconds_since(last_);
+  const double rate = (solver.steps() - last_step_) / std::max(interval, 1e-9);
+  const double eta = (total_steps_ - solver.steps()) / std::max(rate, 1e-9);
+  std::printf("mpm step %ld/%ld  t = %.6g s  %.0f steps/s  ETA %.1f s\n", solver.steps(),
+              total_steps_, solver.time(), rate, eta);
+  std::fflush(stdout);
+  last_ = std::chrono::steady_clock::now();
+  last_step_ = solver.steps();
+}
+
+template <int D>
+void Recorder<D>::finish(const Solver<D>& solver, long gravity_stage_steps, double wall_seconds) {
+  nlohmann::json s;
+  s["wall_seconds"] = wall_seconds;
+  s["mpm_steps"] = solver.steps();
+  s["gravity_stage_steps"] = gravity_stage_steps;
+  s["material_points"] = solver.particles().size();
+  s["time"] = solver.time();
+  s["time_step"] = solver.dt();
+  s["dimension"] = D;
+  if (!solver.footings().empty())
+    s["peak_q"] = peak_q_;
+  io::write_json(directory_ + "/summary.json", s);
+}
+
+template class Recorder<2>;
+template class Recorder<3>;
+
+}  // namespace mpm_lig::mpm

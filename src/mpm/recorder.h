@@ -1,0 +1,47 @@
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/csv_history.h"
+#include "io/field_writer.h"
+#include "mpm/solver.h"
+
+namespace mpm_lig::mpm {
+
+//! What an MPM run writes into its output folder: history.csv (every `history_every`
+//! steps), results.h5/.xdmf (every `output_every` steps), one progress line per output
+//! interval, and summary.json at the end.
+template <int D>
+class Recorder {
+ public:
+  Recorder(const MpmCase& c, const Solver<D>& solver, const std::string& directory,
+           long total_steps);
+
+  //! Called after every main-stage step (and once before the first).
+  void after_step(const Solver<D>& solver);
+  //! Write summary.json; `wall_seconds` covers the whole run (gravity stage included).
+  void finish(const Solver<D>& solver, long gravity_stage_steps, double wall_seconds);
+
+  //! Column names of history.csv.
+  static std::vector<std::string> history_columns(const MpmCase& c);
+  //! One row of history.csv for the solver's current state.
+  static std::vector<double> history_row(const Solver<D>& solver);
+
+ private:
+  void write_fields(const Solver<D>& solver);
+  void print_progress(const Solver<D>& solver);
+
+  std::string directory_;
+  long output_every_, history_every_, total_steps_;
+  std::vector<int> material_ids_;
+  io::CsvHistory history_;
+  std::unique_ptr<io::FieldWriter> fields_;
+  std::chrono::steady_clock::time_point start_, last_;
+  long last_step_ = 0;
+  double peak_q_ = 0.0;
+};
+
+}  // namespace mpm_lig::mpm

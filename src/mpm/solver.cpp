@@ -1,0 +1,351 @@
+#include "mpm/solver.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace mpm_lig::mpm {
+namespace {
+
+//! Nodal masses below this fraction of the smallest point mass count as empty nodes.
+constexpr double kEmptyNodeFraction = 1e-10;
+
+template <class V>
+std::string describe_position(const V& x) {
+  std::ostringstream s;
+  s << "(";
+  for (int d = 0; d < x.size(); ++d)
+    s << (d ? ", " : "") << x[d];
+  s << ")";
+  return s.str();
+}
+
+}  // namespace
+
+template <int D>
+Solver<D>::Solver(MpmCase& c)
+    : grid_(Eigen::Map<const Vec>(c.origin.data()), Eigen::Map<const Vec>(c.size.data()),
+            [&] {
+              std::array<int, D> cells{};
+              std::copy(c.cells.begin(), c.cells.end(), cells.begin());
+              return cells;
+            }()),
+      particles_(generate_particles<D>(c)),
+      shape_(shape_registry().create(c.shape_function)),
+      constraints_(c.constraints, grid_),
+      materials_(std::move(c.materials)),
+      tractions_(c.tractions),
+      gravity_(Eigen::Map<const Vec>(c.gravity.data())),
+      musl_(c.musl),
+      flip_(c.flip),
+      damping_(c.damping),
+      case_damping_(c.damping),
+      mass_scaling_(c.mass_scaling),
+      volumetric_smoothing_(c.volumetric_smoothing) {
+  for (const Footing& f : c.footings)
+    footings_.emplace_back(f, grid_);
+  traction_points_.resize(tractions_.size());
+  for (std::size_t k = 0; k < tractions_.size(); ++k) {
+    for (std::size_t p = 0; p < particles_.size(); ++p) {
+      if (tractions_[k].points.contains(particles_.position[p].data(), D, 0.0))
+        traction_points_[k].push_back(p);
+    }
+  }
+  const std::size_t nm = materials_.size();
+  batch_particles_.resize(nm);
+  batch_points_.resize(nm);
+  batch_increments_.resize(nm);
+  batch_stress_.resize(nm);
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    batch_particles_[particles_.material[p]].push_back(p);
+    batch_points_[particles_.material[p]].push_back(particles_.material_point[p]);
+  }
+  for (std::size_t m = 0; m < nm; ++m) {
+    batch_increments_[m].resize(batch_points_[m].size());
+    batch_stress_[m].resize(batch_points_[m].size());
+  }
+  weights_.resize(particles_.size());
+  increments_.resize(particles_.size());
+  dt_ = c.fixed_time_step ? c.time_step : stable_time_step(c);
+}
+
+template <int D>
+double Solver<D>::stable_time_step(const MpmCase& c) const {
+  double speed = 0.0;
+  for (const auto& m : materials_)
+    speed = std::max(speed, std::sqrt(m->wave_modulus() / (m->density() * mass_scaling_)));
+  return c.cfl * grid_.min_cell() / speed;
+}
+
+template <int D>
+void Solver<D>::set_gravity_stage(bool on, double damping) {
+  prescribed_scale_ = on ? 0.0 : 1.0;
+  damping_ = on ? damping : case_damping_;
+}
+
+template <int D>
+void Solver<D>::begin_main_stage() {
+  set_gravity_stage(false, 0.0);
+  time_ = 0.0;
+  steps_ = 0;
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    particles_.velocity[p].setZero();
+    particles_.reference[p] = particles_.position[p];
+  }
+}
+
+template <int D>
+void Solver<D>::step() {
+  compute_shape_functions();
+  compute_external_forces();
+  map_particles_to_grid();
+  update_grid();
+  map_grid_to_particles();
+  if (musl_)
+    remap_momentum();
+  compute_deformation();
+  update_stress();
+  for (auto& f : footings_)
+    f.advance(time_, prescribed_scale_, dt_);
+  time_ += dt_;
+  ++steps_;
+}
+
+template <int D>
+void Solver<D>::compute_shape_functions() {
+  const Vec& origin = grid_.origin();
+  const Vec& cell = grid_.cell();
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const Vec& x = particles_.position[p];
+    const Vec xi = (x - origin).cwiseQuotient(cell);
+    for (int d = 0; d < D; ++d) {
+      if (!(xi[d] >= 0.0 && xi[d] <= grid_.cells(d))) {
+        throw std::runtime_error("material point " + std::to_string(p) + " left the mesh at " +
+                                 describe_position(x));
+      }
+    }
+    std::array<Weights1d, D> w;
+    for (int d = 0; d < D; ++d)
+      w[d] = shape_->weights(xi[d], particles_.half_length[p][d], cell[d]);
+    PointWeights<D>& pw = weights_[p];
+    pw.count = 0;
+    std::array<int, D> k{};
+    while (true) {
+      std::array<long, D> index;
+      double value = 1.0;
+      Vec gradient = Vec::Ones();
+      for (int d = 0; d < D; ++d) {
+        // A GIMP point at a grid face reaches past it: the weight of the missing node goes
+        // to the face node, which keeps the partition of unity (and of its gradient).
+        index[d] = std::clamp<long>(w[d].first + k[d], 0, grid_.cells(d));
+        value *= w[d].value[k[d]];
+        for (int e = 0; e < D; ++e)
+          gradient[e] *= e == d ? w[d].gradient[k[d]] : w[d].value[k[d]];
+      }
+      pw.node[pw.count] = grid_.node_id(index);
+      pw.value[pw.count] = value;
+      pw.gradient[pw.count] = gradient;
+      ++pw.count;
+      int d = 0;
+      while (d < D && ++k[d] == w[d].count)
+        k[d++] = 0;
+      if (d == D)
+        break;
+    }
+  }
+}
+
+template <int D>
+void Solver<D>::compute_external_forces() {
+  for (auto& f : particles_.external_force)
+    f.setZero();
+  for (std::size_t k = 0; k < tractions_.size(); ++k) {
+    const Vec t =
+        Eigen::Map<const Vec>(tractions_[k].traction.data()) * tractions_[k].function.at(time_);
+    for (const std::size_t p : traction_points_[k]) {
+      const double area = std::pow(particles_.volume0[p], (D - 1.0) / D);
+      particles_.external_force[p] += area * t;
+    }
+  }
+}
+
+template <int D>
+void Solver<D>::map_particles_to_grid() {
+  grid_.reset();
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const double m = particles_.mass[p];
+    const double inertia = mass_scaling_ * m;
+    const Vec momentum = inertia * particles_.velocity[p];
+    const Vec body_force = m * gravity_ + particles_.external_force[p];
+    const Eigen::Matrix<double, D, D> vs =
+        particles_.volume[p] * particles_.stress[p].template topLeftCorner<D, D>();
+    const PointWeights<D>& w = weights_[p];
+    for (int a = 0; a < w.count; ++a) {
+      const long i = w.node[a];
+      const double n = w.value[a];
+      grid_.mass[i] += n * inertia;
+      grid_.momentum[i] += n * momentum;
+      grid_.force[i] += n * body_force - vs * w.gradient[a];
+    }
+  }
+}
+
+template <int D>
+void Solver<D>::update_grid() {
+  double min_mass = std::numeric_limits<double>::max();
+  for (const double m : particles_.mass)
+    min_mass = std::min(min_mass, m * mass_scaling_);
+  const double empty = kEmptyNodeFraction * min_mass;
+  for (std::size_t i = 0; i < grid_.node_count(); ++i) {
+    const double m = grid_.mass[i];
+    if (m <= empty) {
+      grid_.mass[i] = 0.0;
+      grid_.velocity[i].setZero();
+      grid_.velocity_new[i].setZero();
+      continue;
+    }
+    const Vec v = grid_.momentum[i] / m;
+    Vec f = grid_.force[i];
+    // Local non-viscous damping: a force opposing the motion, proportional to the
+    // unbalanced force, so it vanishes at equilibrium and does not depend on the mass.
+    for (int d = 0; d < D && damping_ > 0.0; ++d) {
+      if (v[d] != 0.0)
+        f[d] -= damping_ * std::abs(f[d]) * (v[d] > 0.0 ? 1.0 : -1.0);
+    }
+    grid_.velocity[i] = v;
+    grid_.velocity_new[i] = v + f * (dt_ / m);
+  }
+  apply_boundary_conditions(true);
+}
+
+template <int D>
+void Solver<D>::apply_boundary_conditions(bool record) {
+  for (auto& f : footings_)
+    f.apply(grid_, time_, prescribed_scale_, dt_, record);
+  constraints_.apply(grid_, time_, prescribed_scale_, dt_, record);
+}
+
+template <int D>
+void Solver<D>::map_grid_to_particles() {
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const PointWeights<D>& w = weights_[p];
+    Vec v_pic = Vec::Zero();
+    Vec dv = Vec::Zero();
+    for (int a = 0; a < w.count; ++a) {
+      const long i = w.node[a];
+      v_pic += w.value[a] * grid_.velocity_new[i];
+      dv += w.value[a] * (grid_.velocity_new[i] - grid_.velocity[i]);
+    }
+    Vec& v = particles_.velocity[p];
+    v = flip_ * (v + dv) + (1.0 - flip_) * v_pic;
+    particles_.position[p] += dt_ * v_pic;
+  }
+}
+
+template <int D>
+void Solver<D>::remap_momentum() {
+  std::fill(grid_.momentum.begin(), grid_.momentum.end(), Vec::Zero());
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const Vec momentum = mass_scaling_ * particles_.mass[p] * particles_.velocity[p];
+    const PointWeights<D>& w = weights_[p];
+    for (int a = 0; a < w.count; ++a)
+      grid_.momentum[w.node[a]] += w.value[a] * momentum;
+  }
+  for (std::size_t i = 0; i < grid_.node_count(); ++i) {
+    if (grid_.mass[i] > 0.0)
+      grid_.velocity_new[i] = grid_.momentum[i] / grid_.mass[i];
+  }
+  apply_boundary_conditions(false);
+}
+
+template <int D>
+void Solver<D>::compute_deformation() {
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const PointWeights<D>& w = weights_[p];
+    Eigen::Matrix<double, D, D> L = Eigen::Matrix<double, D, D>::Zero();
+    for (int a = 0; a < w.count; ++a)
+      L.noalias() += grid_.velocity_new[w.node[a]] * w.gradient[a].transpose();
+    Mat3 dF = Mat3::Identity();
+    dF.template topLeftCorner<D, D>() += dt_ * L;
+    increments_[p] = dF;
+  }
+  if (volumetric_smoothing_)
+    smooth_volumetric_strain();
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    particles_.deformation[p] = increments_[p] * particles_.deformation[p];
+    particles_.volume[p] *= increments_[p].determinant();
+  }
+}
+
+template <int D>
+void Solver<D>::smooth_volumetric_strain() {
+  // Cell-averaged volume change (an F-bar for MPM): the in-plane part of each dF is
+  // rescaled so its determinant is the volume-weighted mean of its cell. Removes the
+  // volumetric locking of incompressible plastic flow on low-order shape functions.
+  const std::size_t cells = [&] {
+    std::size_t n = 1;
+    for (int d = 0; d < D; ++d)
+      n *= grid_.cells(d);
+    return n;
+  }();
+  std::vector<double> weight(cells, 0.0), weighted(cells, 0.0);
+  std::vector<std::size_t> cell_of(particles_.size());
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    std::size_t id = 0, stride = 1;
+    for (int d = 0; d < D; ++d) {
+      const double xi = (particles_.position[p][d] - grid_.origin()[d]) / grid_.cell()[d];
+      const long c = std::clamp(static_cast<long>(std::floor(xi)), 0L, grid_.cells(d) - 1L);
+      id += c * stride;
+      stride *= grid_.cells(d);
+    }
+    cell_of[p] = id;
+    weight[id] += particles_.volume[p];
+    weighted[id] += particles_.volume[p] * increments_[p].determinant();
+  }
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const double j_bar = weighted[cell_of[p]] / weight[cell_of[p]];
+    const double j = increments_[p].determinant();
+    increments_[p].template topLeftCorner<D, D>() *= std::pow(j_bar / j, 1.0 / D);
+  }
+}
+
+template <int D>
+void Solver<D>::update_stress() {
+  for (std::size_t m = 0; m < materials_.size(); ++m) {
+    const auto& points = batch_particles_[m];
+    for (std::size_t k = 0; k < points.size(); ++k)
+      batch_increments_[m][k] = increments_[points[k]];
+    materials_[m]->update(batch_points_[m], batch_increments_[m], dt_, batch_stress_[m]);
+    for (std::size_t k = 0; k < points.size(); ++k)
+      particles_.stress[points[k]] = batch_stress_[m][k];
+  }
+}
+
+template <int D>
+double Solver<D>::kinetic_energy() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < particles_.size(); ++p)
+    e += 0.5 * particles_.mass[p] * particles_.velocity[p].squaredNorm();
+  return e;
+}
+
+template <int D>
+double Solver<D>::total_mass() const {
+  double m = 0.0;
+  for (const double mp : particles_.mass)
+    m += mp;
+  return m;
+}
+
+template <int D>
+typename Solver<D>::Vec Solver<D>::total_momentum() const {
+  Vec p = Vec::Zero();
+  for (std::size_t k = 0; k < particles_.size(); ++k)
+    p += particles_.mass[k] * particles_.velocity[k];
+  return p;
+}
+
+template class Solver<2>;
+template class Solver<3>;
+
+}  // namespace mpm_lig::mpm

@@ -1,0 +1,100 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "mpm/case_spec.h"
+#include "mpm/constraints.h"
+#include "mpm/footing.h"
+#include "mpm/grid.h"
+#include "mpm/particles.h"
+#include "mpm/shape_function.h"
+
+namespace mpm_lig::mpm {
+
+//! Explicit MPM in D = 2 (plane strain) or 3 dimensions.
+//!
+//! One step (MUSL; USL skips the remap):
+//!   compute_shape_functions → map_particles_to_grid (mass, momentum, forces) →
+//!   update_grid (damping, acceleration, constraints, footing) → map_grid_to_particles
+//!   (PIC/FLIP velocity, position) → remap_momentum (MUSL: nodal velocity from the updated
+//!   point momenta, constraints again) → compute_deformation (L, dF, F, volume) →
+//!   update_stress (one batch call per material).
+template <int D>
+class Solver {
+ public:
+  using Vec = Eigen::Matrix<double, D, 1>;
+
+  //! Takes the case's materials; `c` keeps the rest of its data.
+  explicit Solver(MpmCase& c);
+
+  //! Advance one step of size dt().
+  void step();
+
+  //! Quasi-static gravity stage: prescribed velocities and footings frozen, `damping`
+  //! instead of the case's; call begin_main_stage() after it.
+  void set_gravity_stage(bool on, double damping);
+  //! Start the main stage: time 0, velocities 0, displacements measured from here.
+  void begin_main_stage();
+
+  double time() const { return time_; }
+  double dt() const { return dt_; }
+  long steps() const { return steps_; }
+  const Particles<D>& particles() const { return particles_; }
+  const Grid<D>& grid() const { return grid_; }
+  const std::vector<RigidFooting<D>>& footings() const { return footings_; }
+  const NodeConstraints<D>& constraints() const { return constraints_; }
+  const std::vector<std::unique_ptr<materials::Material>>& materials() const { return materials_; }
+
+  double kinetic_energy() const;
+  double total_mass() const;
+  Vec total_momentum() const;
+
+ private:
+  double stable_time_step(const MpmCase& c) const;
+  void compute_shape_functions();
+  void compute_external_forces();
+  void map_particles_to_grid();
+  void update_grid();
+  void apply_boundary_conditions(bool record);
+  void map_grid_to_particles();
+  void remap_momentum();
+  void compute_deformation();
+  void smooth_volumetric_strain();
+  void update_stress();
+
+  Grid<D> grid_;
+  Particles<D> particles_;
+  std::unique_ptr<ShapeFunction1d> shape_;
+  NodeConstraints<D> constraints_;
+  std::vector<RigidFooting<D>> footings_;
+  std::vector<std::unique_ptr<materials::Material>> materials_;
+  std::vector<Traction> tractions_;
+  std::vector<std::vector<std::size_t>> traction_points_;
+  Vec gravity_;
+
+  bool musl_;
+  double flip_;
+  double damping_;
+  double case_damping_;
+  double mass_scaling_;
+  bool volumetric_smoothing_;
+  double prescribed_scale_ = 1.0;  // 0 in the gravity stage
+
+  double dt_ = 0.0;
+  double time_ = 0.0;
+  long steps_ = 0;
+
+  // Per-step work arrays.
+  std::vector<PointWeights<D>> weights_;
+  std::vector<Mat3> increments_;
+  // Per material: the points (solver indices) and the batch handed to update().
+  std::vector<std::vector<std::size_t>> batch_particles_;
+  std::vector<std::vector<std::size_t>> batch_points_;
+  std::vector<std::vector<Mat3>> batch_increments_;
+  std::vector<std::vector<Mat3>> batch_stress_;
+};
+
+}  // namespace mpm_lig::mpm

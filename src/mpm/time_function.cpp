@@ -1,0 +1,47 @@
+#include "mpm/time_function.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mpm_lig::mpm {
+
+double TimeFunction::at(double t) const {
+  const double phase = t / time - std::floor(t / time);  // in [0, 1)
+  switch (kind) {
+    case Kind::constant:
+      return 1.0;
+    case Kind::ramp:
+      return std::clamp(t / time, 0.0, 1.0);
+    case Kind::triangular:
+      if (phase < 0.25)
+        return 4.0 * phase;
+      if (phase < 0.75)
+        return 2.0 - 4.0 * phase;
+      return 4.0 * phase - 4.0;
+    case Kind::square:
+      return (phase < 0.25 || phase >= 0.75) ? 1.0 : -1.0;
+    case Kind::sine:
+      return std::sin(2.0 * M_PI * phase);
+  }
+  return 1.0;
+}
+
+TimeFunction TimeFunction::read(const CaseNode& node, const std::string& key) {
+  TimeFunction f;
+  if (!node.has(key))
+    return f;
+  const CaseNode fn = node.child(key);
+  const std::string type = fn.choice("type", {"constant", "ramp", "triangular", "square", "sine"});
+  if (type == "constant")
+    return f;
+  if (type == "ramp") {
+    f.kind = Kind::ramp;
+    f.time = fn.positive("time");
+    return f;
+  }
+  f.kind = type == "triangular" ? Kind::triangular : type == "square" ? Kind::square : Kind::sine;
+  f.time = fn.positive("period");
+  return f;
+}
+
+}  // namespace mpm_lig::mpm

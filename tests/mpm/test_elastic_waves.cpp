@@ -1,0 +1,109 @@
+// Elastic verification: axial vibration of a bar (period and amplitude against the analytic
+// first mode, error falling with refinement) and a column settling under gravity.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mpm/driver.h"
+#include "support.h"
+
+namespace mpm_lig::mpm {
+namespace {
+
+// cases/mpm/bar_vibration.json
+constexpr double kLength = 1.0, kWaveSpeed = 10.0, kV0 = 0.01;
+const double kOmega = M_PI * kWaveSpeed / (2.0 * kLength);
+
+struct BarResult {
+  double period_error;     // relative, mean period from zero crossings
+  double amplitude_error;  // relative, largest |A(t)| over the run
+};
+
+//! Runs the bar with `cells` cells along it and tracks the modal amplitude
+//! A(t) = sum m u sin(pi X/2L) / sum m sin^2(pi X/2L) of the point displacements u.
+BarResult run_bar(int cells, const std::string& shape) {
+  MpmCase c = testing::load_case("bar_vibration", [&](nlohmann::json& j) {
+    const double h = kLength / cells;
+    j["mesh"]["size"] = {kLength + 2 * h, h};
+    j["mesh"]["cells"] = {cells + 2, 1};
+    j["bodies"][0]["box"]["max"] = {kLength, h};
+    j["boundary_conditions"][1]["nodes"]["box"]["max"] = {kLength + 2 * h, h};
+    j["analysis"]["shape_function"] = shape;
+    j["output"]["fields"] = false;
+  });
+  std::vector<double> times, amplitude;
+  run_case<2>(c, "", [&](const Solver<2>& s) {
+    const auto& p = s.particles();
+    double num = 0.0, den = 0.0;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const double mode = std::sin(0.5 * M_PI * p.reference[k].x() / kLength);
+      num += p.mass[k] * (p.position[k].x() - p.reference[k].x()) * mode;
+      den += p.mass[k] * mode * mode;
+    }
+    times.push_back(s.time());
+    amplitude.push_back(num / den);
+  });
+  // Downward zero crossings of A(t) (A = a sin(omega t) starts upward), linearly interpolated.
+  std::vector<double> crossings;
+  double peak = 0.0;
+  for (std::size_t k = 1; k < times.size(); ++k) {
+    peak = std::max(peak, std::abs(amplitude[k]));
+    if (amplitude[k - 1] > 0.0 && amplitude[k] <= 0.0) {
+      const double f = amplitude[k - 1] / (amplitude[k - 1] - amplitude[k]);
+      crossings.push_back(times[k - 1] + f * (times[k] - times[k - 1]));
+    }
+  }
+  EXPECT_GE(crossings.size(), 2u);
+  const double period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  const double exact_period = 2.0 * M_PI / kOmega, exact_amplitude = kV0 / kOmega;
+  return {std::abs(period / exact_period - 1.0), std::abs(peak / exact_amplitude - 1.0)};
+}
+
+TEST(BarVibration, PeriodAndAmplitudeWithinOnePercentAndConverge) {
+  for (const std::string shape : {"linear", "gimp"}) {
+    const BarResult coarse = run_bar(10, shape);
+    const BarResult fine = run_bar(20, shape);
+    RecordProperty(shape + "_period_error_10", std::to_string(coarse.period_error));
+    RecordProperty(shape + "_period_error_20", std::to_string(fine.period_error));
+    std::printf("%s: period error %.3e (10 cells) %.3e (20 cells); amplitude error %.3e %.3e\n",
+                shape.c_str(), coarse.period_error, fine.period_error, coarse.amplitude_error,
+                fine.amplitude_error);
+    EXPECT_LT(coarse.period_error, 0.01) << shape;
+    EXPECT_LT(fine.period_error, 0.01) << shape;
+    EXPECT_LT(coarse.amplitude_error, 0.01) << shape;
+    EXPECT_LT(fine.amplitude_error, 0.01) << shape;
+    EXPECT_LT(fine.period_error, coarse.period_error) << shape;
+  }
+}
+
+TEST(ElasticColumn, VerticalStressIsTheWeightAbove) {
+  MpmCase c = testing::load_case("elastic_column",
+                                 [](nlohmann::json& j) { j["output"]["fields"] = false; });
+  const double rho = 2000.0, g = 9.81, height = 1.0, nu = 0.25;
+  const double k0 = nu / (1.0 - nu), bottom = rho * g * height;
+  double worst_v = 0.0, worst_h = 0.0, kinetic = 0.0;
+  long steps = 0, total = 0;
+  run_case<2>(c, "", [&](const Solver<2>& s) {
+    ++steps;
+    total = main_stage_steps(c, s.dt());
+    if (steps != total)
+      return;
+    kinetic = s.kinetic_energy();
+    const auto& p = s.particles();
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const double sigma_v = -rho * g * (height - p.reference[k].y());
+      worst_v = std::max(worst_v, std::abs(p.stress[k](1, 1) - sigma_v) / bottom);
+      worst_h = std::max(worst_h, std::abs(p.stress[k](0, 0) - k0 * sigma_v) / bottom);
+    }
+  });
+  std::printf(
+      "column: max |sigma_v - rho g h| / (rho g H) = %.3e, sigma_h (K0) %.3e, "
+      "kinetic energy %.3e J\n",
+      worst_v, worst_h, kinetic);
+  EXPECT_LT(worst_v, 0.02);
+  EXPECT_LT(worst_h, 0.02);
+}
+
+}  // namespace
+}  // namespace mpm_lig::mpm

@@ -1,0 +1,59 @@
+// Shape functions: partition of unity, of its gradient, and linear reproduction, for every
+// registered kind, at points all over a cell (cell faces included).
+#include <gtest/gtest.h>
+
+#include "mpm/shape_function.h"
+
+namespace mpm_lig::mpm {
+namespace {
+
+constexpr double kCell = 0.25;
+
+class ShapeKinds : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShapeKinds, PartitionOfUnityAndLinearReproduction) {
+  const auto shape = shape_registry().create(GetParam());
+  for (const double lp : {0.25, 1.0 / 6.0, 0.5}) {
+    for (int k = 0; k <= 400; ++k) {
+      const double xi = 3.0 + k / 400.0 * 1.0;  // one cell, both faces
+      const Weights1d w = shape->weights(xi, lp, kCell);
+      double sum = 0.0, slope = 0.0, x = 0.0, dx = 0.0;
+      for (int a = 0; a < w.count; ++a) {
+        EXPECT_GE(w.value[a], -1e-15);
+        const double node_x = (w.first + a) * kCell;
+        sum += w.value[a];
+        slope += w.gradient[a];
+        x += w.value[a] * node_x;
+        dx += w.gradient[a] * node_x;
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-14) << "xi " << xi << " lp " << lp;
+      EXPECT_NEAR(slope, 0.0, 1e-12) << "xi " << xi << " lp " << lp;
+      EXPECT_NEAR(x, xi * kCell, 1e-14) << "xi " << xi << " lp " << lp;
+      EXPECT_NEAR(dx, 1.0, 1e-12) << "xi " << xi << " lp " << lp;
+    }
+  }
+}
+
+TEST(Gimp, GradientIsContinuousAcrossCellFaces) {
+  // The reason for GIMP: no jump of the gradient when a point crosses a cell face.
+  const GimpShape gimp;
+  const double lp = 0.25, eps = 1e-9;
+  const Weights1d left = gimp.weights(3.0 - eps, lp, kCell);
+  const Weights1d right = gimp.weights(3.0 + eps, lp, kCell);
+  for (int node = 1; node <= 4; ++node) {
+    auto gradient_at = [&](const Weights1d& w) {
+      const int a = node - w.first;
+      return a >= 0 && a < w.count ? w.gradient[a] : 0.0;
+    };
+    EXPECT_NEAR(gradient_at(left), gradient_at(right), 1e-6) << "node " << node;
+  }
+  const LinearShape linear;
+  EXPECT_GT(std::abs(linear.weights(3.0 - eps, lp, kCell).gradient[1] -
+                     linear.weights(3.0 + eps, lp, kCell).gradient[0]),
+            1.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKinds, ShapeKinds, ::testing::Values("linear", "gimp"));
+
+}  // namespace
+}  // namespace mpm_lig::mpm
