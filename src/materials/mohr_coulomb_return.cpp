@@ -92,6 +92,10 @@ double MohrCoulombStrength::yield(const Vec3& s) const {
   return (s[0] - s[2]) + (s[0] + s[2]) * sf - 2.0 * cohesion * std::cos(friction);
 }
 
+bool MohrCoulombStrength::admissible(const Vec3& sorted) const {
+  return yield(sorted) <= tolerance(sorted, *this) && sorted[0] <= tension_cutoff;
+}
+
 double MohrCoulombStrength::apex() const {
   return friction > 0.0 ? cohesion / std::tan(friction) : std::numeric_limits<double>::infinity();
 }

@@ -17,6 +17,9 @@ struct MohrCoulombStrength {
 
   //! f = (σ1 − σ3) + (σ1 + σ3) sin φ − 2 c cos φ for σ1 ≥ σ3: ≤ 0 is admissible.
   double yield(const Vec3& sorted) const;
+  //! Whether sorted principal stresses are inside the yield surface and the cutoff, up to
+  //! a round-off tolerance relative to the stress level (the return's own test).
+  bool admissible(const Vec3& sorted) const;
   //! Mean stress of the cone's apex, c cot φ (infinity for φ = 0).
   double apex() const;
 };

@@ -28,6 +28,10 @@ Mat3 VonMises::correct(std::size_t point, const Mat3& trial) {
 }
 
 Mat3 MohrCoulomb::correct(std::size_t point, const Mat3& trial) {
+  // Most points of a footing analysis are elastic in a step: test before the full spectral
+  // decomposition.
+  if (strength_.admissible(principal_values(trial)))
+    return trial;
   const Principal p = principal(trial);
   ReturnKind kind;
   const Vec3 returned = mohr_coulomb_return(p.values, elasticity(), strength_, &kind);

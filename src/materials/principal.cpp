@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 namespace mpm_lig::materials {
 namespace {
@@ -34,6 +35,21 @@ Principal plane(const Mat3& t) {
 }
 
 }  // namespace
+
+Vec3 principal_values(const Mat3& t) {
+  Vec3 values;
+  if (t(0, 2) == 0.0 && t(1, 2) == 0.0) {
+    const double mean = 0.5 * (t(0, 0) + t(1, 1));
+    const double radius = std::hypot(0.5 * (t(0, 0) - t(1, 1)), t(0, 1));
+    values = Vec3(mean + radius, mean - radius, t(2, 2));
+  } else {
+    Eigen::SelfAdjointEigenSolver<Mat3> solver;
+    solver.computeDirect(t, Eigen::EigenvaluesOnly);
+    values = solver.eigenvalues();
+  }
+  std::sort(values.data(), values.data() + 3, std::greater<double>());
+  return values;
+}
 
 Principal principal(const Mat3& t) {
   if (t(0, 2) == 0.0 && t(1, 2) == 0.0)
