@@ -5,6 +5,9 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
@@ -189,6 +192,33 @@ TEST(FieldWriter, XdmfIsWellFormedAndPointsAtExistingDatasets) {
     EXPECT_TRUE(h5.exists((*it)[1])) << (*it)[1];
   // Per step: positions, volume, and the strain tensor referenced once per Tensor6 column.
   EXPECT_EQ(references, 2 * (1 + 1 + 6));
+}
+
+TEST(FieldWriter, AKilledRunKeepsItsCompletedSteps) {
+  const std::string dir = output_dir("killed");
+  const std::vector<Vec3> pos(20000, Vec3(1.0, 2.0, 3.0));
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    FieldWriter writer(dir);
+    for (long step = 0; step < 3; ++step) {
+      writer.begin_step(step, 0.1 * step, pos);
+      writer.add_scalar("volume", std::vector<double>(pos.size(), 1.0 + step));
+      if (step < 2)
+        writer.end_step();
+    }
+    _exit(0);  // killed in the middle of step 2: no end_step, no destructors
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  H5Reader h5(dir + "/results.h5");
+  ASSERT_TRUE(h5.ok());
+  EXPECT_EQ(h5.read<double>("/step_000001/volume", H5T_NATIVE_DOUBLE),
+            std::vector<double>(pos.size(), 2.0));
+  const std::string xml = read_text(dir + "/results.xdmf");
+  EXPECT_NE(xml.find("step_000001"), std::string::npos);
+  EXPECT_EQ(xml.find("step_000002"), std::string::npos);
 }
 
 TEST(FieldWriter, MisuseIsReported) {

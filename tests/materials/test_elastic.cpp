@@ -115,5 +115,26 @@ TEST(LinearElastic, RigidRotationRotatesTheStressAndKeepsItsInvariants) {
   }
 }
 
+TEST(LinearElastic, UpdatesOnlyTheBatchItIsGivenInItsOrder) {
+  LinearElastic m(2000.0, kElastic);
+  EXPECT_EQ(m.add_points(2), 0u);
+  EXPECT_EQ(m.add_points(3), 2u);
+  Mat3 a = Mat3::Identity(), b = Mat3::Identity();
+  a(0, 0) += 1e-4;
+  b(1, 1) -= 1e-4;
+  std::vector<Mat3> out(7, Mat3::Constant(99.0));  // resized to the batch
+  m.update({4, 1}, {a, b}, 0.1, out);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_GT(out[0](0, 0), 0.0);
+  EXPECT_LT(out[1](1, 1), 0.0);
+  EXPECT_EQ(m.stress(4), out[0]);
+  EXPECT_EQ(m.stress(1), out[1]);
+  for (const std::size_t untouched : {0, 2, 3})
+    EXPECT_EQ(m.stress(untouched), Mat3::Zero());
+  EXPECT_THROW(m.update({5}, {a}, 0.1, out), std::out_of_range);
+  EXPECT_THROW(m.update({0, 1}, {a}, 0.1, out), std::invalid_argument);
+  EXPECT_THROW(m.update({0}, {-Mat3::Identity()}, 0.1, out), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace mpm_lig::materials
