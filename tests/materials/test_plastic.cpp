@@ -198,6 +198,34 @@ TEST(MohrCoulombReturn, RandomTrialsLandOnTheSurfaceAtTheClosestPoint) {
   EXPECT_GT(kinds[static_cast<int>(ReturnKind::apex)], 20);
 }
 
+TEST(MohrCoulombReturn, NonAssociatedAndTrescaReturnsAreAdmissibleAndFinite) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> uniform(-200e3, 100e3);
+  MohrCoulombStrength cutoff = mohr_coulomb(10e3, 35.0, 0.0);
+  cutoff.tension_cutoff = 2e3;
+  for (const MohrCoulombStrength& s : {mohr_coulomb(0.0, 30.0, 0.0), mohr_coulomb(10e3, 40.0, 10.0),
+                                       mohr_coulomb(40e3, 0.0, 0.0), cutoff}) {
+    for (int i = 0; i < 2000; ++i) {
+      Vec3 trial(uniform(random), uniform(random), uniform(random));
+      std::sort(trial.data(), trial.data() + 3, std::greater<double>());
+      ReturnKind kind;
+      const Vec3 r = mohr_coulomb_return(trial, kElastic, s, &kind);
+      ASSERT_TRUE(r.allFinite());
+      ASSERT_LE(s.yield(r), 1e-9 * 200e3) << i;
+      ASSERT_LE(r[0], s.tension_cutoff + 1e-9 * 200e3) << i;
+      ASSERT_GE(r[0] - r[1], -1e-6) << i;
+      ASSERT_GE(r[1] - r[2], -1e-6) << i;
+      // The plastic strain follows the flow rule: its volumetric part is dilation, never
+      // compaction, and none at all for ψ = 0 unless the apex or the cutoff was reached.
+      const Vec3 ep = plastic_strain(trial, r, kElastic);
+      ASSERT_GE(ep.sum(), -1e-12) << i;
+      if (s.dilatancy == 0.0 && (kind == ReturnKind::plane || kind == ReturnKind::edge)) {
+        ASSERT_NEAR(ep.sum(), 0.0, 1e-12) << i;
+      }
+    }
+  }
+}
+
 TEST(MohrCoulomb, RigidRotationOfAYieldingPointChangesNothingButTheAxes) {
   MohrCoulomb m("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(5e3, 30.0, 0.0));
   m.add_points(1);
