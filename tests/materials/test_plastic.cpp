@@ -226,6 +226,30 @@ TEST(MohrCoulombReturn, NonAssociatedAndTrescaReturnsAreAdmissibleAndFinite) {
   }
 }
 
+TEST(MohrCoulomb, LongRandomLargeStrainHistoryStaysAdmissibleAndFinite) {
+  // What a point under a footing meets: many increments of mixed compression, extension,
+  // shear and rotation, total strains far beyond 100 %.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> uniform(-0.01, 0.01);
+  for (const MohrCoulombStrength& s : {mohr_coulomb(0.0, 30.0, 0.0), mohr_coulomb(40e3, 0.0, 0.0),
+                                       mohr_coulomb(5e3, 40.0, 10.0)}) {
+    MohrCoulomb m("mohr_coulomb", 1800.0, kElastic, s);
+    m.add_points(1);
+    m.set_stress(0, -50e3 * Mat3::Identity());
+    for (int i = 0; i < 5000; ++i) {
+      Mat3 dF = Mat3::Identity();
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+          dF(a, b) += uniform(random);
+      const Mat3 stress = step(m, 0, dF);
+      ASSERT_TRUE(stress.allFinite()) << i;
+      ASSERT_LE(s.yield(principal(stress).values), 1e-8 * 50e3) << i;
+      ASSERT_EQ(stress(0, 2), 0.0);  // plane strain stays plane
+    }
+    EXPECT_GT(m.state(0, 0), 0.3);  // well into large plastic strain
+  }
+}
+
 TEST(MohrCoulomb, RigidRotationOfAYieldingPointChangesNothingButTheAxes) {
   MohrCoulomb m("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(5e3, 30.0, 0.0));
   m.add_points(1);
