@@ -1,0 +1,71 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "coupling/rve_layout.h"
+#include "materials/material.h"
+#include "rve/rve.h"
+#include "rve/spec.h"
+
+namespace mpm_lig::coupling {
+
+//! One prepared packing that material points are cloned from.
+struct Packing {
+  std::string restart_file;    //!< engine restart (contact history included)
+  Mat3 stress = Mat3::Zero();  //!< its homogenised stress, physical frame
+  double void_ratio = 0.0;
+  double wave_modulus = 0.0;  //!< measured constrained modulus [Pa]
+};
+
+//! The material law of a point is its own DEM packing (the "dem_rve" material).
+//!
+//! Case node: {"type": "dem_rve", "rve": {RVE spec}, "packings": K, "ranks_per_rve": g}.
+//! `prepare()` consolidates K packings (seeds rve.seed + k) or takes `rve.restart_file`;
+//! point i is cloned from packing i mod K. The MPM is replicated on every rank, so every
+//! rank calls update() with the same batch; each rank group deforms the RVEs it owns and
+//! the stresses are gathered to all ranks in point order (RveLayout).
+class DemRveMaterial final : public materials::Material {
+ public:
+  //! Validates the whole node; creates nothing.
+  explicit DemRveMaterial(const CaseNode& node);
+  ~DemRveMaterial() override;
+
+  std::string type() const override { return "dem_rve"; }
+  double density() const override;
+  double wave_modulus() const override;
+  std::size_t add_points(std::size_t count) override;
+  void set_stress(std::size_t point, const Mat3& sigma) override;
+  void update(const std::vector<std::size_t>& points, const std::vector<Mat3>& dF, double dt,
+              std::vector<Mat3>& stress) override;
+  std::vector<std::string> state_names() const override;
+  double state(std::size_t point, std::size_t k) const override;
+
+  //! Collective over `comm`: consolidate (or load) the packings into `work_dir`.
+  void prepare(MPI_Comm comm, const std::string& work_dir);
+  //! Stress of `point` before any deformation (its packing's).
+  Mat3 initial_stress(std::size_t point) const;
+  //! DEM particle-steps run by this rank's RVEs so far.
+  double particle_steps() const;
+
+ private:
+  void create_rves();
+  std::size_t packing_of(std::size_t point) const { return point % packings_.size(); }
+  std::string point_label(std::size_t point) const;
+
+  rve::RveSpec spec_;
+  std::string path_;
+  int packing_count_ = 1;
+  int ranks_per_rve_ = 1;
+
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  std::vector<Packing> packings_;
+  std::size_t points_ = 0;
+  std::unique_ptr<RveLayout> layout_;
+  std::vector<std::unique_ptr<rve::Rve>> rves_;  //!< the owned block, index - layout.first()
+  std::vector<Mat3> stress_;                     //!< every point's last stress (all ranks)
+  std::vector<double> substeps_;                 //!< every point's last DEM step count
+};
+
+}  // namespace mpm_lig::coupling

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <mpi.h>
+
+#include "core/tensor.h"
+
+namespace mpm_lig::coupling {
+
+//! Which ranks run which RVEs.
+//!
+//! The ranks of `world` form groups of `ranks_per_rve` consecutive ranks; each group has its
+//! own communicator (every RVE of the group runs on it) and owns a contiguous block of the
+//! RVE indices [0, rve_count). The MPM itself is replicated on every rank, so after each
+//! update the owners' stresses are gathered to everyone, in RVE order: the result does not
+//! depend on the number of ranks as long as one RVE's own computation does not (one rank
+//! per RVE).
+class RveLayout {
+ public:
+  //! Collective over `world`. `ranks_per_rve` must divide the size of `world`.
+  RveLayout(MPI_Comm world, int ranks_per_rve, std::size_t rve_count);
+  ~RveLayout();
+  RveLayout(const RveLayout&) = delete;
+  RveLayout& operator=(const RveLayout&) = delete;
+
+  MPI_Comm world() const { return world_; }
+  //! The communicator of this rank's group: the one its RVEs run on.
+  MPI_Comm group_comm() const { return group_comm_; }
+  int group() const { return group_; }
+  int groups() const { return groups_; }
+  bool group_leader() const { return group_rank_ == 0; }
+
+  std::size_t rve_count() const { return rve_count_; }
+  //! First and one-past-last RVE index owned by `group` (this rank's group by default).
+  std::size_t first(int group) const;
+  std::size_t last(int group) const;
+  std::size_t first() const { return first(group_); }
+  std::size_t last() const { return last(group_); }
+  bool owns(std::size_t rve) const { return rve >= first() && rve < last(); }
+  //! The group that owns RVE `rve`.
+  int owner(std::size_t rve) const;
+
+  //! Collective: `owned` holds one tensor per RVE this group owns (in order); returns the
+  //! tensors of all RVEs, identical on every rank.
+  std::vector<Mat3> gather(const std::vector<Mat3>& owned) const;
+  //! The same for `width` doubles per RVE.
+  std::vector<double> gather(const std::vector<double>& owned, int width) const;
+
+ private:
+  MPI_Comm world_;
+  MPI_Comm group_comm_ = MPI_COMM_NULL;
+  int world_rank_ = 0;
+  int world_size_ = 1;
+  int ranks_per_rve_ = 1;
+  int group_ = 0;
+  int groups_ = 1;
+  int group_rank_ = 0;
+  std::size_t rve_count_ = 0;
+};
+
+}  // namespace mpm_lig::coupling
