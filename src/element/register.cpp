@@ -1,7 +1,11 @@
 #include "element/register.h"
 
+#include "element/element_test.h"
+
 namespace mpm_lig::element {
 
-void register_analyses(AnalysisRegistry& /*registry*/) {}
+void register_analyses(AnalysisRegistry& registry) {
+  registry.add("element_test", make_element_test);
+}
 
 }  // namespace mpm_lig::element

@@ -1,0 +1,248 @@
+#include "element/element_test.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "element/strain_path.h"
+#include "io/csv_history.h"
+#include "io/summary.h"
+#include "rve/consolidation.h"
+#include "rve/kinematics.h"
+#include "rve/rve.h"
+#include "rve/snapshot.h"
+
+namespace mpm_lig::element {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+class ElementTest : public Analysis {
+ public:
+  ElementTest(rve::RveSpec rve, ElementTestSpec test) : rve_(std::move(rve)), test_(test) {}
+  void run(const RunContext& context) override;
+
+ private:
+  std::unique_ptr<rve::Rve> prepare(const RunContext& context, nlohmann::json& summary);
+  double lateral_stiffness(rve::Rve& rve);
+
+  rve::RveSpec rve_;
+  ElementTestSpec test_;
+};
+
+std::vector<std::string> history_columns() {
+  std::vector<std::string> columns = {"increment", "time"};
+  for (const char* c : kVoigtNames)
+    columns.push_back(std::string("e_") + c);
+  for (const char* c : kVoigtNames)
+    columns.push_back(std::string("s_") + c);
+  for (const char* c : {"p", "q", "e_vol", "gamma_xy", "void_ratio", "coordination_number",
+                        "kinetic_ratio", "substeps"})
+    columns.push_back(c);
+  return columns;
+}
+
+std::vector<double> history_row(int increment, double time, const Mat3& F,
+                                const rve::Observables& o, int dimension, int substeps) {
+  std::vector<double> row = {double(increment), time};
+  for (double e : to_voigt(rve::hencky_strain(F)))
+    row.push_back(e);
+  for (double s : to_voigt(o.stress))
+    row.push_back(s);
+  row.push_back(rve::mean_stress(o.stress, dimension));
+  row.push_back(rve::deviator_stress(o.stress, dimension));
+  row.push_back(std::log(F.determinant()));
+  row.push_back(F(0, 1) / F(1, 1));
+  row.push_back(o.void_ratio);
+  row.push_back(o.coordination_number);
+  row.push_back(o.kinetic_ratio());
+  row.push_back(substeps);
+  return row;
+}
+
+//! Mobilised friction angle from the extreme principal stresses (compression positive).
+double mobilised_friction_deg(const Mat3& sigma, int dimension) {
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(-sigma);
+  Vec3 s = eig.eigenvalues();  // ascending
+  double s1 = s(2), s3 = s(0);
+  if (dimension == 2) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> e2(-sigma.topLeftCorner<2, 2>());
+    s1 = e2.eigenvalues()(1);
+    s3 = e2.eigenvalues()(0);
+  }
+  return std::asin((s1 - s3) / (s1 + s3)) * 180.0 / kPi;
+}
+
+nlohmann::json state_json(const rve::Observables& o, int dimension) {
+  return {{"p", rve::mean_stress(o.stress, dimension)},
+          {"q", rve::deviator_stress(o.stress, dimension)},
+          {"stress", to_voigt(o.stress)},
+          {"void_ratio", o.void_ratio},
+          {"coordination_number", o.coordination_number},
+          {"kinetic_ratio", o.kinetic_ratio()}};
+}
+
+std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohmann::json& summary) {
+  if (!rve_.restart_file.empty()) {
+    auto rve = rve::Rve::from_restart(rve_, rve_.restart_file, context.comm, "RVE 0");
+    summary["preparation"] = {{"restart_file", rve_.restart_file}};
+    return rve;
+  }
+  auto rve = rve::Rve::generate(rve_, context.comm, "RVE 0");
+  const rve::ConsolidationResult c = rve::consolidate(*rve);
+  const double p = rve::mean_stress(c.final.stress, rve_.dimension);
+  const double target = rve_.preparation.confining_pressure;
+  summary["preparation"] = {{"target_pressure", target},
+                            {"pressure", p},
+                            {"relative_error", (p - target) / target},
+                            {"void_ratio", c.final.void_ratio},
+                            {"coordination_number", c.final.coordination_number},
+                            {"friction_used", c.friction_used},
+                            {"dem_steps", c.steps},
+                            {"target_void_ratio_reached", c.void_ratio_reached}};
+  if (rve_.preparation.target_void_ratio)
+    summary["preparation"]["target_void_ratio"] = *rve_.preparation.target_void_ratio;
+  if (test_.save_restart)
+    rve->write_restart((std::filesystem::path(context.output_dir) / "prepared.restart").string());
+  return rve;
+}
+
+//! dσ/dε of an isotropic probe (per-axis strain, all axes): an upper bound of the lateral
+//! stiffness, so that the drained servo never over-corrects.
+double ElementTest::lateral_stiffness(rve::Rve& rve) {
+  const double probe = test_.strain_increment;
+  const double p0 = rve::mean_stress(rve.stress(), rve_.dimension);
+  Mat3 dF = Mat3::Identity() * std::exp(-probe);
+  if (rve_.dimension == 2)
+    dF(2, 2) = 1.0;
+  rve.deform(dF);
+  const double p1 = rve::mean_stress(rve.stress(), rve_.dimension);
+  rve.deform(dF.inverse());
+  return std::max((p1 - p0) / probe, 10.0 * std::abs(p0));
+}
+
+void ElementTest::run(const RunContext& context) {
+  const auto start = std::chrono::steady_clock::now();
+  int rank = 0;
+  MPI_Comm_rank(context.comm, &rank);
+  const bool writer = rank == 0;
+  const std::filesystem::path dir(context.output_dir);
+  nlohmann::json summary = {
+      {"engine", rve_.engine},
+      {"test", test_.name},
+      {"dimension", rve_.dimension},
+      {"grains", rve_.grains},
+      {"time_step", rve_.time_step},
+      {"rayleigh_time_step", rve_.rayleigh_time_step},
+      {"affine_motion", rve_.stream_velocity ? "streaming_velocity" : "remap_positions"}};
+  auto rve = prepare(context, summary);
+  rve::Observables now = rve->observe();
+  rve->check_health(now);
+  double confining = test_.confining_pressure > 0.0 ? test_.confining_pressure
+                                                    : rve::mean_stress(now.stress, rve_.dimension);
+  double stiffness = 0.0;
+  if (test_.kind == TestKind::kDrainedCompression) {
+    stiffness = lateral_stiffness(*rve);
+    summary["confining_pressure"] = confining;
+    summary["servo_stiffness"] = stiffness;
+  }
+  const auto path = make_strain_path(test_, rve_.dimension, confining, stiffness);
+
+  std::unique_ptr<io::CsvHistory> history;
+  if (writer)
+    history = std::make_unique<io::CsvHistory>((dir / "history.csv").string(), history_columns());
+  if (writer)
+    std::filesystem::create_directories(dir / "snapshots");
+  auto snapshot = [&](int k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "rve_%06d", k);
+    rve::write_snapshot(*rve, (dir / "snapshots" / name).string(), writer);
+  };
+
+  Mat3 F = Mat3::Identity();
+  double time = 0.0;
+  if (writer)
+    history->write(history_row(0, time, F, now, rve_.dimension, 0));
+  snapshot(0);
+  double peak_friction = mobilised_friction_deg(now.stress, rve_.dimension);
+  nlohmann::json peak = state_json(now, rve_.dimension);
+  const int n = path->increments();
+  for (int k = 0; k < n; ++k) {
+    const Mat3 dF = path->increment(k, now.stress);
+    const int substeps = rve->deform(dF);
+    F = dF * F;
+    time += substeps * rve_.time_step;
+    now = rve->observe();
+    rve->check_health(now);
+    const bool last = k + 1 == n;
+    if (writer && ((k + 1) % test_.output_every == 0 || last))
+      history->write(history_row(k + 1, time, F, now, rve_.dimension, substeps));
+    if ((test_.snapshot_every > 0 && (k + 1) % test_.snapshot_every == 0) || last)
+      snapshot(k + 1);
+    const double phi = mobilised_friction_deg(now.stress, rve_.dimension);
+    if (phi > peak_friction) {
+      peak_friction = phi;
+      peak = state_json(now, rve_.dimension);
+      peak["increment"] = k + 1;
+    }
+  }
+  summary["increments"] = n;
+  summary["final"] = state_json(now, rve_.dimension);
+  summary["peak"] = peak;
+  summary["peak_mobilised_friction_deg"] = peak_friction;
+  double steps = rve->particle_steps();
+  MPI_Allreduce(MPI_IN_PLACE, &steps, 1, MPI_DOUBLE, MPI_MAX, context.comm);
+  summary["dem_particle_steps"] = steps;
+  summary["wall_seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (writer)
+    io::write_json((dir / "summary.json").string(), summary);
+}
+
+}  // namespace
+
+ElementTestSpec parse_element_test(const CaseNode& a, const rve::RveSpec& rve) {
+  ElementTestSpec t;
+  const std::string test2d = "drained_biaxial", test3d = "drained_triaxial";
+  t.name =
+      a.choice("test", {"isotropic_compression", test2d, test3d, "undrained_cyclic_simple_shear"});
+  if ((t.name == test2d && rve.dimension != 2) || (t.name == test3d && rve.dimension != 3))
+    a.fail("test", t.name + " needs an RVE of dimension " + (t.name == test2d ? "2" : "3") + " (" +
+                       rve.path + ".dimension is " + std::to_string(rve.dimension) + ")");
+  t.strain_increment = a.in_range_or("strain_increment", 1e-7, 0.01, 1e-4);
+  t.output_every = a.get_or<int>("output_every", 1);
+  if (t.output_every < 1)
+    a.fail("output_every", "must be >= 1");
+  t.snapshot_every = a.get_or<int>("snapshot_every", 0);
+  if (t.snapshot_every < 0)
+    a.fail("snapshot_every", "must be >= 0");
+  t.save_restart = a.get_or<bool>("save_restart", true);
+  if (t.name == "isotropic_compression") {
+    t.kind = TestKind::kIsotropicCompression;
+    t.strain = a.in_range("strain", 1e-7, 0.5);
+  } else if (t.name == "undrained_cyclic_simple_shear") {
+    t.kind = TestKind::kUndrainedCyclicSimpleShear;
+    t.shear_amplitude = a.in_range("shear_strain_amplitude", 1e-7, 2.0);
+    t.cycles = a.get<int>("cycles");
+    if (t.cycles < 1)
+      a.fail("cycles", "must be >= 1");
+  } else {
+    t.kind = TestKind::kDrainedCompression;
+    t.strain = a.in_range("axial_strain", 1e-7, 0.7);
+    t.confining_pressure = a.positive_or("confining_pressure", 0.0);
+  }
+  if (t.strain_increment > std::max(t.strain, t.shear_amplitude))
+    a.fail("strain_increment", "is larger than the total strain of the test");
+  return t;
+}
+
+std::unique_ptr<Analysis> make_element_test(const CaseNode& root) {
+  rve::RveSpec rve = rve::parse_rve_spec(root.child("rve"));
+  ElementTestSpec test = parse_element_test(root.child("analysis"), rve);
+  return std::make_unique<ElementTest>(std::move(rve), test);
+}
+
+}  // namespace mpm_lig::element

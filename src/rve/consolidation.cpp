@@ -1,0 +1,88 @@
+#include "rve/consolidation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mpm_lig::rve {
+namespace {
+
+//! Steps per servo cycle: short against the time a stress wave needs to cross the cell.
+constexpr int kChunk = 100;
+//! A relaxed packing: kinetic energy this small against the elastic energy.
+constexpr double kAtRest = 2e-3;
+
+//! Isotropic increment of the (in-plane in 2D) strain by `strain` per axis.
+Mat3 isotropic_increment(double strain, int dimension) {
+  Mat3 dF = Mat3::Identity() * (1.0 + strain);
+  if (dimension == 2)
+    dF(2, 2) = 1.0;
+  return dF;
+}
+
+//! Fastest servo strain rate: inertial number 5e-3 at the target pressure unless asked.
+double max_strain_rate(const RveSpec& spec, double pressure) {
+  if (spec.preparation.max_strain_rate > 0.0)
+    return spec.preparation.max_strain_rate;
+  return 5e-3 / (2.0 * spec.radius.mean() * std::sqrt(spec.density / pressure));
+}
+
+}  // namespace
+
+Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left) {
+  const RveSpec& spec = rve.spec();
+  const int dim = spec.dimension;
+  const double max_step = max_strain_rate(spec, pressure) * kChunk * spec.time_step;
+  Observables now = rve.observe();
+  int settled = 0;
+  while (steps_left > 0) {
+    const double p = mean_stress(now.stress, dim);
+    double strain = -max_step;  // loose: close the gaps at full speed
+    if (p > 0.2 * pressure && now.mean_overlap_strain > 0.0) {
+      // Affine Hertz stiffness dp/dε = 1.5 p / (δ/d): an upper bound of the packing's, so
+      // the correction never overshoots (it converges geometrically instead).
+      const double stiffness = 1.5 * p / now.mean_overlap_strain;
+      strain = std::clamp(-0.5 * (pressure - p) / stiffness, -max_step, max_step);
+    }
+    rve.deform(isotropic_increment(strain, dim), kChunk);
+    steps_left -= kChunk;
+    now = rve.observe();
+    const double p_new = mean_stress(now.stress, dim);
+    const bool on_target = std::abs(p_new - pressure) <= tolerance * pressure;
+    settled = on_target && now.kinetic_ratio() < kAtRest ? settled + 1 : 0;
+    if (settled >= 3)
+      return now;
+  }
+  throw std::runtime_error(rve.label() + ": isotropic servo to " + std::to_string(pressure) +
+                           " Pa did not settle within the step budget (" + spec.path +
+                           ".preparation.max_steps)");
+}
+
+ConsolidationResult consolidate(Rve& rve) {
+  const RveSpec& spec = rve.spec();
+  const PreparationSpec& prep = spec.preparation;
+  ConsolidationResult result;
+  long steps_left = prep.max_steps;
+  double friction = spec.contact.friction;
+  result.friction_used = friction;
+  // Lower friction lets grains slide into a denser packing; halve it until the target void
+  // ratio is reached (or friction is gone), then consolidate with the real friction.
+  result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
+  if (prep.target_void_ratio) {
+    while (result.final.void_ratio > *prep.target_void_ratio && friction > 0.0) {
+      friction = friction > 1e-3 ? 0.5 * friction : 0.0;
+      rve.set_friction(friction);
+      result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
+    }
+    result.friction_used = friction;
+    result.void_ratio_reached = result.final.void_ratio <= *prep.target_void_ratio;
+    if (friction != spec.contact.friction) {
+      rve.set_friction(spec.contact.friction);
+      result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
+    }
+  }
+  result.steps = prep.max_steps - steps_left;
+  return result;
+}
+
+}  // namespace mpm_lig::rve

@@ -1,0 +1,26 @@
+#pragma once
+
+#include "rve/observables.h"
+#include "rve/rve.h"
+
+namespace mpm_lig::rve {
+
+//! How a consolidation went.
+struct ConsolidationResult {
+  Observables final;         //!< state at the end (relaxed, at the target pressure)
+  double friction_used = 0;  //!< lowest friction used while compacting
+  long steps = 0;            //!< DEM steps spent
+  bool void_ratio_reached = true;
+};
+
+//! Isotropic servo compression of a fresh packing to `spec.preparation.confining_pressure`
+//! (within its tolerance, and at rest), optionally towards a target void ratio by compacting
+//! with lowered friction first. Throws std::runtime_error naming the RVE if the step budget
+//! runs out.
+ConsolidationResult consolidate(Rve& rve);
+
+//! Servo the RVE isotropically to mean stress `pressure` (within `tolerance`, relative) and
+//! let it come to rest; returns the final state. Used by consolidation and element tests.
+Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left);
+
+}  // namespace mpm_lig::rve

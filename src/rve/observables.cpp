@@ -1,0 +1,78 @@
+#include "rve/observables.h"
+
+#include <cmath>
+#include <limits>
+
+namespace mpm_lig::rve {
+
+double Observables::kinetic_ratio() const {
+  return elastic_energy > 0.0 ? kinetic_energy / elastic_energy
+                              : std::numeric_limits<double>::infinity();
+}
+
+double mean_stress(const Mat3& sigma, int dimension) {
+  return dimension == 2 ? -0.5 * (sigma(0, 0) + sigma(1, 1)) : mean_pressure(sigma);
+}
+
+double deviator_stress(const Mat3& sigma, int dimension) {
+  if (dimension == 2)
+    return std::hypot(0.5 * (sigma(0, 0) - sigma(1, 1)), sigma(0, 1));
+  return deviatoric_stress(sigma);
+}
+
+GrainState gather_grains(dem::Engine& engine) {
+  auto vec3 = [&](const char* name) {
+    const std::vector<double> flat = engine.gather_atoms(name, 3);
+    std::vector<Vec3> out(flat.size() / 3);
+    for (std::size_t i = 0; i < out.size(); ++i)
+      out[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+    return out;
+  };
+  GrainState g;
+  g.x = vec3("x");
+  g.v = vec3("v");
+  g.omega = vec3("omega");
+  g.radius = engine.gather_atoms("radius", 1);
+  g.mass = engine.gather_atoms("rmass", 1);
+  return g;
+}
+
+Mat3 contact_stress(const std::vector<dem::Contact>& contacts, double volume) {
+  Mat3 sum = Mat3::Zero();
+  for (const auto& c : contacts)
+    sum += c.branch * c.force.transpose();
+  // Symmetric for equilibrated grains; the virial is symmetrised the same way.
+  return 0.5 * (sum + sum.transpose()) / volume;
+}
+
+void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact>& contacts,
+                        const Mat3& streaming, const Vec3& origin, Observables& out) {
+  out.grains = static_cast<long>(grains.x.size());
+  out.contacts = 0;
+  out.elastic_energy = 0.0;
+  for (const auto& c : contacts) {
+    const double distance = c.branch.norm();
+    const double fn = std::abs(c.force.dot(c.branch)) / distance;
+    if (fn <= 0.0)
+      continue;
+    ++out.contacts;
+    const double overlap =
+        grains.radius[c.id_i - 1] + grains.radius[c.id_j - 1] - distance;  // ids start at 1
+    if (overlap > 0.0) {
+      out.elastic_energy += 0.4 * fn * overlap;
+      out.mean_overlap_strain += overlap / distance;
+    }
+  }
+  if (out.contacts > 0)
+    out.mean_overlap_strain /= static_cast<double>(out.contacts);
+  out.coordination_number = out.grains > 0 ? 2.0 * out.contacts / out.grains : 0.0;
+  out.kinetic_energy = 0.0;
+  for (std::size_t i = 0; i < grains.x.size(); ++i) {
+    const Vec3 fluctuation = grains.v[i] - streaming * (grains.x[i] - origin);
+    const double inertia = 0.4 * grains.mass[i] * grains.radius[i] * grains.radius[i];
+    out.kinetic_energy += 0.5 * grains.mass[i] * fluctuation.squaredNorm() +
+                          0.5 * inertia * grains.omega[i].squaredNorm();
+  }
+}
+
+}  // namespace mpm_lig::rve

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <vector>
+
+#include "core/tensor.h"
+#include "dem/engine.h"
+
+namespace mpm_lig::rve {
+
+//! What one look at an RVE tells (all in the physical frame).
+struct Observables {
+  Mat3 stress = Mat3::Zero();        //!< Cauchy stress, tension positive [Pa]
+  double void_ratio = 0.0;           //!< (cell - solid) / solid; areas in 2D
+  double coordination_number = 0.0;  //!< 2 N_contacts / N_grains
+  double kinetic_energy = 0.0;       //!< of the velocity fluctuations and rotations [J]
+  double elastic_energy = 0.0;       //!< normal Hertz energy Σ 2/5 F_n δ [J]
+  long contacts = 0;
+  double mean_overlap_strain = 0.0;  //!< mean overlap / branch length over contacts
+  long grains = 0;
+  //! kinetic / elastic energy (infinite without contacts): ≪ 1 means quasi-static.
+  double kinetic_ratio() const;
+};
+
+//! Mean stress p (compression positive) of a tension-positive σ: in-plane mean in 2D.
+double mean_stress(const Mat3& sigma, int dimension);
+//! Deviatoric stress q: sqrt(3/2 s:s) in 3D; the Mohr-circle radius in the plane in 2D.
+double deviator_stress(const Mat3& sigma, int dimension);
+
+//! Grain state gathered from an engine, ordered by grain id.
+struct GrainState {
+  std::vector<Vec3> x, v, omega;
+  std::vector<double> radius, mass;
+};
+GrainState gather_grains(dem::Engine& engine);
+
+//! Σ branch ⊗ force / volume over `contacts` (tension positive, the engine's frame).
+Mat3 contact_stress(const std::vector<dem::Contact>& contacts, double volume);
+
+//! Contact count, coordination and energies. `streaming` is the affine velocity gradient
+//! of the grains (removed before the kinetic energy), `origin` the point where it is zero.
+void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact>& contacts,
+                        const Mat3& streaming, const Vec3& origin, Observables& out);
+
+}  // namespace mpm_lig::rve

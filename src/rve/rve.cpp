@@ -1,0 +1,200 @@
+#include "rve/rve.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "rve/engine_input.h"
+#include "rve/kinematics.h"
+#include "rve/packing.h"
+
+namespace mpm_lig::rve {
+namespace {
+
+constexpr const char* kAxes = "xyz";
+
+//! Measure of the engine's cell: area in 2D (what the engine divides its virial by).
+double cell_measure(const Mat3& h, int dimension) {
+  return dimension == 2 ? h(0, 0) * h(1, 1) : h.determinant();
+}
+
+}  // namespace
+
+Rve::Rve(const RveSpec& spec, MPI_Comm comm, const std::string& label)
+    : spec_(spec), label_(label) {
+  dem::EngineOptions options;
+  options.label = label;
+  options.log_file = spec.log_file;
+  engine_ = dem::create_engine(spec.engine, comm, options);
+}
+
+std::unique_ptr<Rve> Rve::generate(const RveSpec& spec, MPI_Comm comm, const std::string& label) {
+  const Packing packing = generate_packing(spec);
+  std::unique_ptr<Rve> rve(new Rve(spec, comm, label));
+  rve->engine_->commands(setup_input(spec, packing));
+  rve->engine_->commands(material_input(spec, spec.contact.friction));
+  rve->engine_->commands(dynamics_input(spec));
+  rve->engine_->command("run 0");
+  return rve;
+}
+
+std::unique_ptr<Rve> Rve::from_restart(const RveSpec& spec, const std::string& restart_file,
+                                       MPI_Comm comm, const std::string& label) {
+  std::unique_ptr<Rve> rve(new Rve(spec, comm, label));
+  rve->engine_->commands(restart_input(spec, restart_file));
+  rve->engine_->commands(material_input(spec, spec.contact.friction));
+  rve->engine_->commands(dynamics_input(spec));
+  rve->engine_->command("run 0");
+  const long count = rve->engine_->atom_count();
+  if (count != spec.grains) {
+    throw std::runtime_error(label + ": restart file '" + restart_file + "' holds " +
+                             std::to_string(count) + " grains, " + spec.path + ".grains says " +
+                             std::to_string(spec.grains));
+  }
+  return rve;
+}
+
+Mat3 Rve::box_matrix() const {
+  return engine_->box().h();
+}
+
+double Rve::volume() const {
+  const Mat3 h = box_matrix();
+  return spec_.dimension == 2 ? cell_measure(h, 2) * spec_.thickness : h.determinant();
+}
+
+Mat3 Rve::stress() {
+  const std::vector<double> p = engine_->compute_vector("stress", 6);
+  // σ = -P; in 2D the engine's pressure is per unit length (N/m): spread it over the thickness.
+  Mat3 sigma_rve = -from_voigt({p[0], p[1], p[2], p[3], p[4], p[5]});
+  sigma_rve *= cell_measure(box_matrix(), spec_.dimension) / volume();
+  const Mat3 sigma = rotation_ * sigma_rve * rotation_.transpose();
+  last_mean_stress_ = mean_stress(sigma, spec_.dimension);
+  return sigma;
+}
+
+Observables Rve::observe() {
+  Observables o;
+  o.stress = stress();
+  const GrainState grains = gather_grains(*engine_);
+  const std::vector<dem::Contact> contacts = engine_->contacts();
+  add_grain_measures(grains, contacts, streaming_, engine_->box().lo, o);
+  const double solid = solid_measure(grains.radius, spec_.dimension);
+  o.void_ratio = cell_measure(box_matrix(), spec_.dimension) / solid - 1.0;
+  return o;
+}
+
+void Rve::check_health(const Observables& now) const {
+  std::ostringstream problem;
+  if (now.grains != spec_.grains)
+    problem << "lost " << spec_.grains - now.grains << " of " << spec_.grains << " grains";
+  else if (!now.stress.allFinite() || !std::isfinite(now.kinetic_energy))
+    problem << "stress or velocities are not finite (NaN)";
+  else if (now.kinetic_ratio() > spec_.max_kinetic_ratio)
+    problem << "runaway kinetic energy: kinetic/elastic = " << now.kinetic_ratio() << " > "
+            << spec_.path << ".max_kinetic_ratio = " << spec_.max_kinetic_ratio
+            << " (time step too large or deformation too fast?)";
+  if (!problem.str().empty())
+    throw std::runtime_error(label_ + ": " + problem.str());
+}
+
+void Rve::set_friction(double friction) {
+  engine_->commands(material_input(spec_, friction));
+}
+
+void Rve::write_restart(const std::string& file) {
+  // A saved packing carries no streaming motion: a clone starts with a resting box.
+  set_streaming(Mat3::Zero());
+  engine_->command("write_restart " + file);
+}
+
+int Rve::substeps_for(const Mat3& effective_increment) {
+  const SubstepSpec& s = spec_.substeps;
+  if (s.fixed > 0)
+    return s.fixed;
+  // Inertial number I = γ̇ d sqrt(ρ/p), with γ̇ = |ΔF_eff - I| / (n Δt).
+  const double strain = (effective_increment - Mat3::Identity()).norm();
+  const double p = std::max(std::abs(last_mean_stress_), 1e3);
+  const double d = 2.0 * spec_.radius.mean();
+  const double n =
+      strain * d * std::sqrt(spec_.density / p) / (s.inertial_number * spec_.time_step);
+  return static_cast<int>(std::min<double>(s.max, std::max<double>(s.min, std::ceil(n))));
+}
+
+void Rve::set_streaming(const Mat3& gradient) {
+  if (!spec_.stream_velocity)
+    return;
+  const Mat3 change = gradient - streaming_;
+  if (change.isZero(0.0))
+    return;
+  const Vec3 lo = engine_->box().lo;
+  std::ostringstream script;
+  for (int i = 0; i < 3; ++i) {
+    script << "variable mpm_stream_" << kAxes[i] << " atom ";
+    for (int j = 0; j < 3; ++j)
+      script << (j ? "+" : "") << "(" << fmt(change(i, j)) << ")*(" << kAxes[j] << "-("
+             << fmt(lo[j]) << "))";
+    script << '\n';
+  }
+  script << "velocity all set v_mpm_stream_x v_mpm_stream_y "
+         << (spec_.dimension == 3 ? "v_mpm_stream_z" : "NULL") << " sum yes units box\n";
+  engine_->commands(script.str());
+  streaming_ = gradient;
+}
+
+void Rve::reduce_cell_basis() {
+  const Mat3 h = box_matrix();
+  const Mat3 reduced = reduce_tilts(h);
+  if ((reduced - h).norm() <= 1e-12 * h.norm())
+    return;
+  // Same lattice, other basis: grains are wrapped into the new cell; streaming velocities
+  // depend on the cell, so they are taken out first and put back by the next increment.
+  set_streaming(Mat3::Zero());
+  std::ostringstream command;
+  command << "change_box all xy final " << fmt(reduced(0, 1));
+  if (spec_.dimension == 3)
+    command << " xz final " << fmt(reduced(0, 2)) << " yz final " << fmt(reduced(1, 2));
+  engine_->command(command.str());
+}
+
+void Rve::run_to_box(const Mat3& target, int steps) {
+  const Mat3 h = box_matrix();
+  if ((target - h).isZero(0.0)) {
+    engine_->command("run " + std::to_string(steps));
+    return;
+  }
+  const Vec3 lo = engine_->box().lo;
+  std::ostringstream fix;
+  fix << "fix mpm_deform all deform 1";
+  for (int i = 0; i < spec_.dimension; ++i)
+    fix << ' ' << kAxes[i] << " final " << fmt(lo[i]) << ' ' << fmt(lo[i] + target(i, i));
+  fix << " xy final " << fmt(target(0, 1));
+  if (spec_.dimension == 3)
+    fix << " xz final " << fmt(target(0, 2)) << " yz final " << fmt(target(1, 2));
+  fix << " remap " << (spec_.stream_velocity ? "v" : "x") << " flip no";
+  engine_->command(fix.str());
+  // `pre yes` (the default): `pre no` would keep the previous deformation target.
+  engine_->command("run " + std::to_string(steps));
+  engine_->command("unfix mpm_deform");
+}
+
+int Rve::deform(const Mat3& dF, int substeps) {
+  if (spec_.dimension == 2) {
+    const double out_of_plane =
+        std::abs(dF(0, 2)) + std::abs(dF(1, 2)) + std::abs(dF(2, 0)) + std::abs(dF(2, 1));
+    if (out_of_plane > 1e-12 || std::abs(dF(2, 2) - 1.0) > 1e-12)
+      throw std::invalid_argument(label_ + ": a 2D RVE takes in-plane deformation increments only");
+  }
+  reduce_cell_basis();
+  const Mat3 h = box_matrix();
+  const BoxStep step = box_step(rotation_.transpose() * dF * rotation_, h);
+  const Mat3 effective = step.target * h.inverse();
+  const int n = substeps > 0 ? substeps : substeps_for(effective);
+  set_streaming((effective - Mat3::Identity()) / (n * spec_.time_step));
+  run_to_box(step.target, n);
+  rotation_ = rotation_ * step.rotation;
+  particle_steps_ += static_cast<double>(n) * static_cast<double>(spec_.grains);
+  return n;
+}
+
+}  // namespace mpm_lig::rve

@@ -1,0 +1,76 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <mpi.h>
+
+#include "core/tensor.h"
+#include "dem/engine.h"
+#include "rve/observables.h"
+#include "rve/spec.h"
+
+namespace mpm_lig::rve {
+
+//! One periodic DEM packing driven by deformation increments (DESIGN.md §2).
+//!
+//! The engine's box h is upper triangular (the RVE frame); the rotation Q from the RVE frame to
+//! the physical frame is kept here. A physical increment ΔF becomes ΔF' = Qᵀ ΔF Q, split as
+//! ΔF'·h = Q_inc·R_new; the box is driven to R_new with `fix deform … final`, and Q ← Q·Q_inc.
+//! All calls are collective over the RVE's communicator.
+class Rve {
+ public:
+  //! A fresh loose packing generated from `spec` (not yet consolidated: see consolidate()).
+  static std::unique_ptr<Rve> generate(const RveSpec& spec, MPI_Comm comm,
+                                       const std::string& label);
+  //! A clone of a saved packing (engine restart file written by write_restart()).
+  static std::unique_ptr<Rve> from_restart(const RveSpec& spec, const std::string& restart_file,
+                                           MPI_Comm comm, const std::string& label);
+
+  const RveSpec& spec() const { return spec_; }
+  const std::string& label() const { return label_; }
+  dem::Engine& engine() { return *engine_; }
+
+  //! Apply the physical deformation increment `dF` over `substeps` DEM steps (0: as the spec's
+  //! sub-stepping rule says). Returns the number of DEM steps run.
+  int deform(const Mat3& dF, int substeps = 0);
+  //! Let the packing evolve without deformation (removes any streaming motion).
+  void relax(int steps) { deform(Mat3::Identity(), steps); }
+
+  //! Stress, void ratio, coordination and energies now (physical frame).
+  Observables observe();
+  //! The stress only (cheap: no grain gathering), physical frame, tension positive.
+  Mat3 stress();
+  //! Throws std::runtime_error naming the RVE on lost grains, NaN or runaway kinetic energy.
+  void check_health(const Observables& now) const;
+
+  //! Change the sliding friction (compaction towards a target void ratio).
+  void set_friction(double friction);
+  //! Save the packing with its contact history (the rotation Q is not part of it).
+  void write_restart(const std::string& file);
+
+  //! Box matrix (columns a, b, c) in the RVE frame, and the rotation to the physical frame.
+  Mat3 box_matrix() const;
+  const Mat3& rotation() const { return rotation_; }
+  //! Cell volume (area × thickness in 2D: the volume the stress refers to).
+  double volume() const;
+  //! Accumulated DEM particle-steps (grains × steps) of this RVE.
+  double particle_steps() const { return particle_steps_; }
+
+ private:
+  Rve(const RveSpec& spec, MPI_Comm comm, const std::string& label);
+  int substeps_for(const Mat3& effective_increment);
+  void reduce_cell_basis();
+  void set_streaming(const Mat3& gradient);
+  void run_to_box(const Mat3& target, int steps);
+
+  RveSpec spec_;
+  std::string label_;
+  std::unique_ptr<dem::Engine> engine_;
+  Mat3 rotation_ = Mat3::Identity();
+  Mat3 streaming_ = Mat3::Zero();  //!< velocity gradient currently in the grain velocities
+  double particle_steps_ = 0.0;
+  double last_mean_stress_ = 0.0;
+};
+
+}  // namespace mpm_lig::rve

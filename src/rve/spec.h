@@ -1,0 +1,81 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/case_node.h"
+
+namespace mpm_lig::rve {
+
+//! Grain radii: uniform in [min, max], or a piecewise-linear cumulative distribution by number.
+struct RadiusSpec {
+  double min = 0.0;
+  double max = 0.0;
+  std::vector<double> radii;       //!< distribution support points (ascending), empty: uniform
+  std::vector<double> cumulative;  //!< cumulative number fraction at `radii` (0 ... 1)
+  double mean() const;             //!< number-mean radius
+};
+
+//! Contact law (Hertz–Mindlin); optional effects appear in the engine input only when set.
+struct ContactSpec {
+  double youngs_modulus = 0.0;  //!< [Pa]
+  double poisson_ratio = 0.0;
+  double friction = 0.0;                          //!< sliding friction coefficient μ
+  double restitution = 0.0;                       //!< normal coefficient of restitution
+  std::optional<double> rolling_friction;         //!< rolling resistance coefficient μ_r
+  std::optional<double> cohesion_energy_density;  //!< [J/m^3], LIGGGHTS sjkr only
+};
+
+//! Preparation of a fresh packing (ignored when the RVE starts from a restart file).
+struct PreparationSpec {
+  double confining_pressure = 0.0;          //!< isotropic target p [Pa]
+  std::optional<double> target_void_ratio;  //!< reached by lowering friction while compacting
+  double tolerance = 0.005;                 //!< relative pressure tolerance at the end
+  double initial_solid_fraction = 0.0;      //!< of the loose random packing
+  double max_strain_rate = 0.0;             //!< servo strain rate limit [1/s]
+  long max_steps = 0;                       //!< DEM step budget for the whole preparation
+};
+
+//! How many DEM steps one deformation increment takes.
+struct SubstepSpec {
+  int fixed = 0;                 //!< > 0: exactly this many
+  double inertial_number = 0.0;  //!< otherwise from I = γ̇ d sqrt(ρ/p)
+  int min = 1;
+  int max = 0;
+};
+
+//! Everything needed to build, prepare and drive one RVE (the "rve" node of a case, and
+//! later `materials[i]` of type "dem_rve").
+struct RveSpec {
+  std::string path;                 //!< JSON path of the node, for messages
+  std::string engine = "liggghts";  //!< "liggghts" | "lammps"
+  int dimension = 3;                //!< 2: discs in a plane (enforce2d), 3: spheres
+  long grains = 0;
+  RadiusSpec radius;
+  double density = 0.0;  //!< grain density [kg/m^3]
+  std::uint64_t seed = 1;
+  ContactSpec contact;
+  double time_step = 0.0;  //!< DEM time step [s] (resolved from a Rayleigh fraction if asked)
+  double rayleigh_time_step = 0.0;
+  PreparationSpec preparation;
+  std::string restart_file;  //!< start from this engine restart instead of preparing
+  SubstepSpec substeps;
+  bool stream_velocity = false;    //!< affine motion by streaming velocity (remap v) or remap x
+  double thickness = 0.0;          //!< 2D: out-of-plane thickness that turns N/m into Pa
+  double max_kinetic_ratio = 1.0;  //!< health limit on kinetic / elastic energy
+  std::string log_file;            //!< engine log for debugging ("" = none)
+};
+
+//! Smallest accepted grain count: fewer grains do not make a representative packing and the
+//! periodic cell gets smaller than the neighbour cut-off.
+inline constexpr long kMinGrains = 50;
+
+//! Read and validate an RVE node; every problem is a CaseError naming its JSON path.
+RveSpec parse_rve_spec(const CaseNode& node);
+
+//! Rayleigh time step of the smallest grain [s].
+double rayleigh_time_step(const RveSpec& spec);
+
+}  // namespace mpm_lig::rve
