@@ -1,6 +1,7 @@
 #include "core/case_node.h"
 
 #include <array>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -156,6 +157,15 @@ MPM_LIG_CASE_GET(bool)
 MPM_LIG_CASE_GET(std::string)
 #undef MPM_LIG_CASE_GET
 
+std::string CaseNode::file_path(const std::string& key) const {
+  const std::filesystem::path name = get<std::string>(key);
+  if (name.empty())
+    fail(key, "empty file name");
+  if (name.is_absolute() || usage_->base_dir.empty())
+    return name.string();
+  return (std::filesystem::path(usage_->base_dir) / name).lexically_normal().string();
+}
+
 double CaseNode::positive(const std::string& key) const {
   const double v = get<double>(key);
   if (!(v > 0.0))
@@ -251,7 +261,9 @@ CaseDocument CaseDocument::load(const std::string& filename) {
     throw CaseError("(file)", "cannot open case file '" + filename + "'");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse(text.str());
+  CaseDocument document = parse(text.str());
+  document.usage_->base_dir = std::filesystem::path(filename).parent_path().string();
+  return document;
 }
 
 CaseNode CaseDocument::root() const {

@@ -35,6 +35,10 @@ class CaseNode {
     return has(key) ? get<T>(key) : fallback;
   }
 
+  //! Required file name; a relative name is taken relative to the case file's folder, so a
+  //! case runs the same from any working directory.
+  std::string file_path(const std::string& key) const;
+
   //! Required number > 0.
   double positive(const std::string& key) const;
   double positive_or(const std::string& key, double fallback) const;
@@ -67,6 +71,7 @@ class CaseNode {
   friend class CaseDocument;
   struct Usage {
     std::set<std::string> used_paths;
+    std::string base_dir;  //!< folder of the case file ("" for parsed text)
   };
   CaseNode(const nlohmann::json* json, std::string path, std::shared_ptr<Usage> usage)
       : json_(json), path_(std::move(path)), usage_(std::move(usage)) {}

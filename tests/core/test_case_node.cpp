@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "core/case_node.h"
 
 using mpm_lig::CaseDocument;
@@ -74,4 +77,18 @@ TEST(CaseDocument, ReportsKeysNobodyRead) {
 TEST(CaseDocument, SyntaxErrorIsACaseError) {
   EXPECT_EQ(error_path([] { CaseDocument::parse("{\"a\": }"); }), "(file)");
   EXPECT_EQ(error_path([] { CaseDocument::load("/nonexistent/case.json"); }), "(file)");
+}
+
+TEST(CaseNode, FilePathsAreRelativeToTheCaseFile) {
+  const std::string dir = ::testing::TempDir() + "/case_dir";
+  std::filesystem::create_directories(dir);
+  const std::string file = dir + "/c.json";
+  std::ofstream(file) << R"({"a": "packing.restart", "b": "/abs/p.restart", "c": ""})";
+  const auto doc = CaseDocument::load(file);
+  EXPECT_EQ(doc.root().file_path("a"),
+            std::filesystem::path(dir + "/packing.restart").lexically_normal().string());
+  EXPECT_EQ(doc.root().file_path("b"), "/abs/p.restart");
+  EXPECT_EQ(error_path([&] { doc.root().file_path("c"); }), "c");
+  // Parsed text has no folder: names stay as given.
+  EXPECT_EQ(CaseDocument::parse(R"({"a": "x/y"})").root().file_path("a"), "x/y");
 }
