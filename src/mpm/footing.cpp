@@ -16,11 +16,17 @@ RigidFooting<D>::RigidFooting(const Footing& spec, const Grid<D>& grid) : spec_(
   }
   for (long id = 0; id < static_cast<long>(grid.node_count()); ++id) {
     const Vec x = grid.node_position(id);
-    bool inside = true;
-    for (int d = 0; d < D - 1; ++d)
-      inside = inside && std::abs(x[d] - spec.center[d]) <= 0.5 * spec.width[d] + tol;
-    if (inside)
+    // Share of the node's tributary length [x - h/2, x + h/2] under the footing, per axis.
+    double share = 1.0;
+    for (int d = 0; d < D - 1; ++d) {
+      const double h = grid.cell()[d];
+      const double outside = std::abs(x[d] - spec.center[d]) - 0.5 * spec.width[d];
+      share *= std::clamp(0.5 - outside / h, 0.0, 1.0);
+    }
+    if (share > tol) {
       footprint_.push_back(id);
+      share_.push_back(share);
+    }
   }
 }
 
@@ -31,12 +37,13 @@ void RigidFooting<D>::apply(Grid<D>& grid, double t, double scale, double dt, bo
   const double vf = -speed(t, scale);
   const double base_now = base();
   Vec reaction = Vec::Zero();
-  for (const long node : footprint_) {
+  for (std::size_t k = 0; k < footprint_.size(); ++k) {
+    const long node = footprint_[k];
     const double m = grid.mass[node];
     if (m <= 0.0)
       continue;
     const double y = grid.origin()[up] + grid.node_index(node)[up] * h;
-    const double w = std::clamp(1.0 - (base_now - y) / h, 0.0, 1.0);
+    const double w = share_[k] * std::clamp(1.0 - (base_now - y) / h, 0.0, 1.0);
     Vec& v = grid.velocity_new[node];
     if (w <= 0.0 || v[up] <= vf)  // not reached, or the material moves away from the base
       continue;

@@ -15,8 +15,10 @@ namespace mpm_lig::mpm {
 //! when the material there pushes against it (unilateral contact: the soil may move away,
 //! never pull). The base moves continuously through the fixed grid, so the node row just
 //! below it is blended in with weight 1 - (base - y)/h: without this the load jumps every
-//! time the base crosses a node row. Rough: the horizontal velocity is the footing's too;
-//! smooth: only the normal component is imposed.
+//! time the base crosses a node row. Likewise across the edges: a node takes the share of
+//! its tributary width [x - h/2, x + h/2] that lies under the footing (1/2 at an edge on a
+//! grid line), else the footing acts as if it were about one cell wider. Rough: the
+//! horizontal velocity is the footing's too; smooth: only the normal one is imposed.
 template <int D>
 class RigidFooting {
  public:
@@ -45,7 +47,8 @@ class RigidFooting {
 
  private:
   Footing spec_;
-  std::vector<long> footprint_;  // nodes whose horizontal position lies under the footing
+  std::vector<long> footprint_;  // nodes whose tributary width reaches under the footing
+  std::vector<double> share_;    // the share of it under the footing
   double area_ = 1.0;
   double settlement_ = 0.0;
   double load_ = 0.0;

@@ -100,14 +100,14 @@ TEST_P(FreeFlight, MassAndMomentumAreConserved) {
     check_conservation<3>(free_flight(GetParam(), false));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Variants, FreeFlight,
-    // No linear + USL: its nodes at the edge of the body get tiny masses but full-size
-    // gradients, and the run blows up (README, "MPM cases").
-    ::testing::Values(Variant{2, "linear", "musl"}, Variant{3, "linear", "musl"},
-                      Variant{2, "gimp", "musl"}, Variant{2, "gimp", "usl"},
-                      Variant{3, "gimp", "usl"}, Variant{3, "gimp", "musl"}),
-    name_of);
+INSTANTIATE_TEST_SUITE_P(Variants, FreeFlight,
+                         // No linear + USL: its nodes at the edge of the body get tiny masses but
+                         // full-size gradients, and the run blows up (README, "MPM cases").
+                         ::testing::Values(Variant{2, "linear", "musl"},
+                                           Variant{3, "linear", "musl"}, Variant{2, "gimp", "musl"},
+                                           Variant{2, "gimp", "usl"}, Variant{3, "gimp", "usl"},
+                                           Variant{3, "gimp", "musl"}),
+                         name_of);
 
 }  // namespace
 }  // namespace mpm_lig::mpm

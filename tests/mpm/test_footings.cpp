@@ -1,0 +1,97 @@
+// Strip footings against bearing-capacity theory, and robustness at large penetration.
+// Each runs its case from cases/mpm as is (only field output switched off).
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mpm/driver.h"
+#include "support.h"
+
+namespace mpm_lig::mpm {
+namespace {
+
+constexpr double kWidth = 1.0;  // B in all footing cases
+
+struct LoadCurve {
+  std::vector<double> settlement_ratio;  // d / B
+  std::vector<double> q;                 // [Pa]
+  std::size_t points = 0;
+  bool finite = true;
+};
+
+LoadCurve run_footing(const std::string& name) {
+  MpmCase c = testing::load_case(name, [](nlohmann::json& j) { j["output"]["fields"] = false; });
+  LoadCurve curve;
+  run_case<2>(c, "", [&](const Solver<2>& s) {
+    const auto& f = s.footings().front();
+    curve.settlement_ratio.push_back(f.settlement() / kWidth);
+    curve.q.push_back(f.load() / f.contact_area());
+    curve.points = s.particles().size();
+  });
+  return curve;
+}
+
+//! Mean q over lo <= d/B <= hi: the plateau of the load curve once the mechanism has formed
+//! (explicit MPM load curves carry some noise, so one sample is not the answer).
+double plateau(const LoadCurve& c, double lo, double hi) {
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t k = 0; k < c.q.size(); ++k) {
+    if (c.settlement_ratio[k] >= lo && c.settlement_ratio[k] <= hi) {
+      sum += c.q[k];
+      ++n;
+    }
+  }
+  EXPECT_GT(n, 10) << "the run did not reach d/B = " << hi;
+  return sum / n;
+}
+
+TEST(Footing, PrandtlOnTrescaSoil) {
+  const double cu = 1.0e4, exact = 2.0 + M_PI;
+  const LoadCurve curve = run_footing("prandtl_tresca");
+  const double nc = plateau(curve, 0.025, 0.05) / cu;
+  std::printf("Prandtl: q_u/c_u = %.4f (2 + pi = %.4f), error %.2f %%\n", nc, exact,
+              100.0 * (nc / exact - 1.0));
+  EXPECT_NEAR(nc, exact, 0.05 * exact);
+}
+
+TEST(Footing, VesicNqOnWeightlessMohrCoulombSoil) {
+  const double phi = 28.1 * M_PI / 180.0, surcharge = 1.0e4;
+  const double nq = std::pow(std::tan(M_PI / 4 + phi / 2), 2) * std::exp(M_PI * std::tan(phi));
+  const LoadCurve curve = run_footing("vesic_mohr_coulomb");
+  const double ratio = plateau(curve, 0.015, 0.04) / surcharge;
+  std::printf("Vesic: q_u/q = %.3f (N_q = %.3f), error %.2f %%\n", ratio, nq,
+              100.0 * (ratio / nq - 1.0));
+  EXPECT_NEAR(ratio, nq, 0.15 * nq);
+}
+
+TEST(Footing, LargePenetrationWithGimpIsSmooth) {
+  const double qu = (2.0 + M_PI) * 1.0e4;
+  const LoadCurve curve = run_footing("footing_large_penetration");
+  ASSERT_GE(curve.settlement_ratio.back(), 1.5);
+  // A spike is a sample that stands out of its neighbourhood: the load minus its moving
+  // average over d/B +- 0.025 (about 5 cells of travel), relative to (2 + pi) c_u.
+  // A point leaving the mesh or a NaN position ends the run with an exception (test fails).
+  double worst = 0.0;
+  for (std::size_t k = 0; k < curve.q.size(); ++k) {
+    ASSERT_TRUE(std::isfinite(curve.q[k]));
+    if (curve.settlement_ratio[k] < 0.1)
+      continue;
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t m = 0; m < curve.q.size(); ++m) {
+      if (std::abs(curve.settlement_ratio[m] - curve.settlement_ratio[k]) <= 0.025) {
+        sum += curve.q[m];
+        ++n;
+      }
+    }
+    worst = std::max(worst, std::abs(curve.q[k] - sum / n) / qu);
+  }
+  std::printf("large penetration: d/B = %.3f, worst spike %.2f %% of (2+pi) c_u, q(end)/c_u %.3f\n",
+              curve.settlement_ratio.back(), 100.0 * worst, curve.q.back() / 1.0e4);
+  EXPECT_LT(worst, 0.10);
+}
+
+}  // namespace
+}  // namespace mpm_lig::mpm
