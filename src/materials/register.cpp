@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include "materials/drucker_prager.h"
 #include "materials/linear_elastic.h"
 #include "materials/material.h"
 #include "materials/plastic.h"
@@ -34,19 +35,40 @@ std::unique_ptr<Material> read_tresca(const CaseNode& node) {
   return std::make_unique<MohrCoulomb>("tresca", density, elasticity, strength);
 }
 
-std::unique_ptr<Material> read_mohr_coulomb(const CaseNode& node) {
-  const double density = node.positive("density");
-  const Elasticity elasticity = Elasticity::read(node);
+//! c, φ, ψ as Mohr–Coulomb and Drucker–Prager read them.
+MohrCoulombStrength read_friction(const CaseNode& node) {
   MohrCoulombStrength strength;
   strength.cohesion = node.non_negative("cohesion");
   const double friction_deg = read_open_range(node, "friction_deg", 0.0, 90.0);
   strength.friction = friction_deg * kDegree;
   strength.dilatancy = node.in_range_or("dilatancy_deg", 0.0, friction_deg, 0.0) * kDegree;
+  return strength;
+}
+
+std::unique_ptr<Material> read_mohr_coulomb(const CaseNode& node) {
+  const double density = node.positive("density");
+  const Elasticity elasticity = Elasticity::read(node);
+  MohrCoulombStrength strength = read_friction(node);
   if (node.has("tension_cutoff")) {
     // Beyond the apex c cot φ the cutoff would never act: reject it rather than ignore it.
     strength.tension_cutoff = node.in_range("tension_cutoff", 0.0, strength.apex());
   }
   return std::make_unique<MohrCoulomb>("mohr_coulomb", density, elasticity, strength);
+}
+
+std::unique_ptr<Material> read_drucker_prager(const CaseNode& node) {
+  using Match = DruckerPragerCone::Match;
+  const double density = node.positive("density");
+  const Elasticity elasticity = Elasticity::read(node);
+  const MohrCoulombStrength s = read_friction(node);
+  const std::string match =
+      node.choice("match", {"plane_strain", "triaxial_compression", "triaxial_extension"});
+  const Match kind = match == "plane_strain"           ? Match::plane_strain
+                     : match == "triaxial_compression" ? Match::triaxial_compression
+                                                       : Match::triaxial_extension;
+  const DruckerPragerCone cone =
+      DruckerPragerCone::matched(kind, s.cohesion, s.friction, s.dilatancy);
+  return std::make_unique<DruckerPrager>(density, elasticity, cone);
 }
 
 }  // namespace
@@ -56,6 +78,7 @@ void register_materials(MaterialRegistry& registry) {
   registry.add("von_mises", read_von_mises);
   registry.add("tresca", read_tresca);
   registry.add("mohr_coulomb", read_mohr_coulomb);
+  registry.add("drucker_prager", read_drucker_prager);
 }
 
 }  // namespace mpm_lig::materials

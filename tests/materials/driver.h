@@ -58,4 +58,34 @@ Mat3 mixed_step(Law& law, Mat3 dF, const std::vector<std::vector<int>>& free, co
   return step(law, 0, dF);
 }
 
+//! Plane-strain simple shear at constant vertical stress σ_yy = −`vertical`, no horizontal
+//! strain, from a K0 = 0.5 state: `steps` shear increments `dgamma`; returns the last stress.
+template <class Law>
+Mat3 simple_shear_at_constant_vertical_stress(Law& law, double vertical, int steps, double dgamma) {
+  Mat3 k0 = -vertical * Mat3::Identity();
+  k0(0, 0) = k0(2, 2) = -0.5 * vertical;
+  law.set_stress(0, k0);
+  Mat3 s;
+  for (int i = 0; i < steps; ++i) {
+    Mat3 dF = Mat3::Identity();
+    dF(0, 1) = dgamma;
+    s = mixed_step(law, dF, {{1}}, Vec3(0.0, -vertical, 0.0));
+  }
+  return s;
+}
+
+//! Drained triaxial compression along z from an isotropic state −`confining`, the lateral
+//! stress held at −`confining`: `steps` axial strain increments `dstrain`.
+template <class Law>
+Mat3 triaxial_compression(Law& law, double confining, int steps, double dstrain) {
+  law.set_stress(0, -confining * Mat3::Identity());
+  Mat3 s;
+  for (int i = 0; i < steps; ++i) {
+    Mat3 dF = Mat3::Identity();
+    dF(2, 2) = 1.0 - dstrain;
+    s = mixed_step(law, dF, {{0, 1}}, Vec3(-confining, -confining, 0.0));
+  }
+  return s;
+}
+
 }  // namespace mpm_lig::materials::testing

@@ -89,6 +89,10 @@ TEST(MaterialCaseKeys, BadValuesNameTheirJsonPath) {
   EXPECT_EQ(error_path(mc + R"("frction_deg": 30, "friction_deg": 30, )" + kElastic + "}"),
             "materials[0].frction_deg");
   EXPECT_EQ(error_path(mc + R"("friction_deg": 30, )" + kElastic + "}"), "");
+  const std::string dp = R"({"type": "drucker_prager", "cohesion": 1e3, "friction_deg": 30, )";
+  EXPECT_EQ(error_path(dp + kElastic + "}"), "materials[0].match");
+  EXPECT_EQ(error_path(dp + R"("match": "plane", )" + kElastic + "}"), "materials[0].match");
+  EXPECT_EQ(error_path(dp + R"("match": "plane_strain", )" + kElastic + "}"), "");
 }
 
 }  // namespace

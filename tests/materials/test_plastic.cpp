@@ -10,7 +10,6 @@
 namespace mpm_lig::materials {
 namespace {
 
-using testing::mixed_step;
 using testing::rotation;
 using testing::step;
 
@@ -92,13 +91,7 @@ TEST(MohrCoulomb, TriaxialCompressionLimitMatchesTheClosedForm) {
     const double c = 10e3, phi = 30.0, confining = 100e3;
     MohrCoulomb m("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(c, phi, psi));
     m.add_points(1);
-    m.set_stress(0, -confining * Mat3::Identity());
-    Mat3 s;
-    for (int i = 0; i < 300; ++i) {
-      Mat3 dF = Mat3::Identity();
-      dF(2, 2) = 1.0 - 1e-4;  // axial compression; lateral stress held at the confinement
-      s = mixed_step(m, dF, {{0, 1}}, Vec3(-confining, -confining, 0.0));
-    }
+    const Mat3 s = testing::triaxial_compression(m, confining, 300, 1e-4);
     const double sf = std::sin(phi * kDegree), cf = std::cos(phi * kDegree);
     const double limit = (1.0 + sf) / (1.0 - sf) * confining + 2.0 * c * cf / (1.0 - sf);
     EXPECT_NEAR(-s(2, 2), limit, 1e-6 * limit) << "psi " << psi;
@@ -115,15 +108,7 @@ TEST(MohrCoulomb, PlaneStrainSimpleShearLimitMatchesDavis) {
     const double phi = 30.0, vertical = 100e3;
     MohrCoulomb m("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(0.0, phi, psi));
     m.add_points(1);
-    Mat3 k0 = -vertical * Mat3::Identity();
-    k0(0, 0) = k0(2, 2) = -0.5 * vertical;
-    m.set_stress(0, k0);
-    Mat3 s;
-    for (int i = 0; i < 400; ++i) {
-      Mat3 dF = Mat3::Identity();
-      dF(0, 1) = 2.5e-4;
-      s = mixed_step(m, dF, {{1}}, Vec3(0.0, -vertical, 0.0));
-    }
+    const Mat3 s = testing::simple_shear_at_constant_vertical_stress(m, vertical, 400, 2.5e-4);
     const double sf = std::sin(phi * kDegree), sd = std::sin(psi * kDegree);
     const double ratio = sf * std::cos(psi * kDegree) / (1.0 - sf * sd);
     // The Jaumann spin shifts the steady state by O(σ/G) = O(1e-3).
