@@ -41,8 +41,9 @@ Mat3 contact_stress(const std::vector<dem::Contact>& contacts, double volume) {
   Mat3 sum = Mat3::Zero();
   for (const auto& c : contacts)
     sum += c.branch * c.force.transpose();
-  // Symmetric for equilibrated grains; the virial is symmetrised the same way.
-  return 0.5 * (sum + sum.transpose()) / volume;
+  // Not symmetrised: grains out of rotational equilibrium make it slightly asymmetric, and the
+  // engines report the upper components (xy = Σ r_x f_y, as in their virial).
+  return sum / volume;
 }
 
 void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact>& contacts,

@@ -33,7 +33,8 @@ struct GrainState {
 };
 GrainState gather_grains(dem::Engine& engine);
 
-//! Σ branch ⊗ force / volume over `contacts` (tension positive, the engine's frame).
+//! Σ branch ⊗ force / volume over `contacts` (tension positive, the engine's frame; not
+//! symmetrised: its upper components are what the engine's virial reports).
 Mat3 contact_stress(const std::vector<dem::Contact>& contacts, double volume);
 
 //! Contact count, coordination and energies. `streaming` is the affine velocity gradient

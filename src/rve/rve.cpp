@@ -106,6 +106,9 @@ void Rve::write_restart(const std::string& file) {
   // A saved packing carries no streaming motion: a clone starts with a resting box.
   set_streaming(Mat3::Zero());
   engine_->command("write_restart " + file);
+  // A clone re-evaluates the contact forces once when it starts (which advances the tangential
+  // history by one step); doing the same here keeps the original bit-identical to its clones.
+  engine_->command("run 0");
 }
 
 int Rve::substeps_for(const Mat3& effective_increment) {

@@ -1,0 +1,169 @@
+// RVE checks on small consolidated packings (LIGGGHTS unless named): consolidation accuracy,
+// rigid rotation, large simple shear with cell flips, clones, and Σ r⊗f / V.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "core/case_node.h"
+#include "rve/consolidation.h"
+#include "rve/kinematics.h"
+#include "rve/rve.h"
+
+using namespace mpm_lig;
+
+namespace {
+
+constexpr double kPressure = 1e5;
+
+std::string spec_json(const std::string& engine, int dimension, int grains) {
+  return R"({"rve": {"engine": ")" + engine + R"(", "dimension": )" + std::to_string(dimension) +
+         R"(, "grains": )" + std::to_string(grains) +
+         R"(, "radius": {"min": 0.003, "max": 0.007}, "density": 2650, "seed": 3,
+      "contact": {"youngs_modulus": 7e8, "poisson_ratio": 0.3, "friction": 0.5,
+                  "damping_ratio": 0.1},
+      "time_step_fraction": 0.15, "preparation": {"confining_pressure": 1e5},
+      "substeps": {"fixed": 50}}})";
+}
+
+rve::RveSpec make_spec(const std::string& engine, int dimension, int grains) {
+  const auto doc = CaseDocument::parse(spec_json(engine, dimension, grains));
+  return rve::parse_rve_spec(doc.root().child("rve"));
+}
+
+Mat3 rotation_z(double angle) {
+  Mat3 r = Mat3::Identity();
+  r(0, 0) = r(1, 1) = std::cos(angle);
+  r(0, 1) = -std::sin(angle);
+  r(1, 0) = std::sin(angle);
+  return r;
+}
+
+//! One consolidated 2D packing shared by the tests (restart file), made once.
+class RveTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    spec_ = std::make_unique<rve::RveSpec>(make_spec("liggghts", 2, 120));
+    original_ = rve::Rve::generate(*spec_, MPI_COMM_WORLD, "test RVE");
+    result_ = rve::consolidate(*original_);
+    restart_ = std::string(MPM_LIG_BINARY_DIR) + "/test_rve_prepared.restart";
+    original_->write_restart(restart_);
+  }
+  static void TearDownTestSuite() { original_.reset(); }
+  std::unique_ptr<rve::Rve> clone() {
+    return rve::Rve::from_restart(*spec_, restart_, MPI_COMM_WORLD, "clone");
+  }
+  static std::unique_ptr<rve::RveSpec> spec_;
+  static std::unique_ptr<rve::Rve> original_;
+  static rve::ConsolidationResult result_;
+  static std::string restart_;
+};
+std::unique_ptr<rve::RveSpec> RveTest::spec_;
+std::unique_ptr<rve::Rve> RveTest::original_;
+rve::ConsolidationResult RveTest::result_;
+std::string RveTest::restart_;
+
+}  // namespace
+
+TEST_F(RveTest, ConsolidationReachesTargetPressureAtRest) {
+  const double p = rve::mean_stress(result_.final.stress, 2);
+  EXPECT_NEAR(p, kPressure, 0.02 * kPressure);
+  EXPECT_LT(result_.final.kinetic_ratio(), 0.01);
+  // Isotropic: the deviator is small against p for a consolidated packing.
+  EXPECT_LT(rve::deviator_stress(result_.final.stress, 2), 0.1 * p);
+  EXPECT_GT(result_.final.coordination_number, 2.5);
+  // The clone reads the state back (a restart re-evaluates the contact forces once).
+  auto c = clone();
+  const Mat3 s = c->stress();
+  EXPECT_LT((s - result_.final.stress).norm(), 1e-3 * kPressure);
+}
+
+TEST_F(RveTest, RigidRotationRotatesStressAndKeepsInvariants) {
+  for (double total_deg : {90.0, 360.0}) {
+    auto r = clone();
+    auto still = clone();  // the same packing left alone for as many steps (slow creep)
+    const int increments = static_cast<int>(total_deg / 5.0);
+    const double step = total_deg / increments * M_PI / 180.0;
+    for (int k = 0; k < increments; ++k) {
+      r->deform(rotation_z(step), 20);
+      still->relax(20);
+    }
+    const Mat3 s0 = still->stress();
+    const Mat3 s = r->stress();
+    const Mat3 q = rotation_z(total_deg * M_PI / 180.0);
+    const Mat3 expected = q * s0 * q.transpose();
+    const double p0 = rve::mean_stress(s0, 2);
+    EXPECT_NEAR(rve::mean_stress(s, 2), p0, 0.01 * p0) << total_deg;
+    EXPECT_NEAR(rve::deviator_stress(s, 2), rve::deviator_stress(s0, 2), 0.01 * p0) << total_deg;
+    EXPECT_LT((s - expected).norm(), 0.01 * p0) << total_deg << "\n" << s << "\n" << expected;
+    // The box itself never rotated: the rotation lives outside it.
+    EXPECT_LT((r->box_matrix() - clone()->box_matrix()).norm(), 1e-9);
+  }
+}
+
+TEST_F(RveTest, SimpleShearToHundredPercentFlipsTheCellAndLosesNothing) {
+  auto r = clone();
+  const double increment = 0.01;
+  for (int k = 0; k < 100; ++k) {
+    Mat3 dF = Mat3::Identity();
+    dF(0, 1) = increment;
+    r->deform(dF, 60);
+  }
+  const rve::Observables o = r->observe();
+  EXPECT_EQ(o.grains, spec_->grains);
+  EXPECT_TRUE(o.stress.allFinite());
+  EXPECT_NO_THROW(r->check_health(o));
+  const Mat3 h = r->box_matrix();
+  EXPECT_LE(std::abs(h(0, 1)), 0.5 * h(0, 0) + 0.02 * h(1, 1));  // the cell basis was reduced
+  EXPECT_GT(rve::mean_stress(o.stress, 2), 0.0);                 // still a packing under load
+}
+
+TEST_F(RveTest, CloneIsBitIdenticalToItsOriginalAfterTheSameDeformation) {
+  rve::Rve* a = original_.get();
+  auto b = clone();
+  Mat3 dF = Mat3::Identity();
+  dF(0, 1) = 2e-3;
+  dF(1, 1) = 1.0 - 1e-3;
+  for (int k = 0; k < 5; ++k) {
+    a->deform(dF, 40);
+    b->deform(dF, 40);
+  }
+  const Mat3 sa = a->stress(), sb = b->stress();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      EXPECT_EQ(sa(i, j), sb(i, j));
+}
+
+TEST_F(RveTest, StressEqualsContactSumAfterDeformation) {
+  auto r = clone();
+  Mat3 dF = Mat3::Identity();
+  dF(0, 1) = 3e-3;
+  dF(0, 0) = 1.0 - 2e-3;
+  r->deform(dF, 100);
+  r->engine().command("run 0");  // virial and contact list of the same force evaluation
+  const Mat3 s = r->stress();
+  const Mat3 from_contacts = rve::contact_stress(r->engine().contacts(), r->volume());
+  const Voigt6 a = to_voigt(s), b = to_voigt(from_contacts);  // upper components
+  for (int i = 0; i < 6; ++i)
+    EXPECT_NEAR(a[i], b[i], 1e-6 * s.norm()) << kVoigtNames[i];
+}
+
+TEST(RveKinematics, QrSplitKeepsRotationOutsideTheBox) {
+  Mat3 h;
+  h << 0.1, 0.02, 0.01, 0, 0.09, -0.03, 0, 0, 0.11;
+  Mat3 dF = rotation_z(0.3);
+  dF(0, 1) += 0.05;
+  const rve::BoxStep step = rve::box_step(dF, h);
+  EXPECT_LT((step.rotation * step.target - dF * h).norm(), 1e-14);
+  EXPECT_LT((step.rotation.transpose() * step.rotation - Mat3::Identity()).norm(), 1e-14);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_GT(step.target(i, i), 0.0);
+  EXPECT_NEAR(step.target(1, 0) + step.target(2, 0) + step.target(2, 1), 0.0, 1e-15);
+  // A lattice-preserving basis reduction keeps the volume and bounds the tilts.
+  Mat3 skew = h;
+  skew(0, 1) = 0.17;
+  const Mat3 reduced = rve::reduce_tilts(skew);
+  EXPECT_NEAR(reduced.determinant(), skew.determinant(), 1e-16);
+  EXPECT_LE(std::abs(reduced(0, 1)), 0.5 * reduced(0, 0));
+}
