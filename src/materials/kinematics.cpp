@@ -6,6 +6,9 @@
 namespace mpm_lig::materials {
 
 StrainIncrement split_increment(const Mat3& dF) {
+  // det dF <= 0: the step turned the point inside out; no strain measure makes sense.
+  if (!(dF.determinant() > 0.0))
+    throw std::runtime_error("deformation increment inverts the material point (det dF <= 0)");
   const Mat3 identity = Mat3::Identity();
   const Mat3 sum = dF + identity;
   const double det = sum.determinant();

@@ -17,7 +17,8 @@ struct StrainIncrement {
 //! the Cayley transform ΔR = (I − ½ skew G)^-1 (I + ½ skew G): exactly orthogonal, so
 //! σ_new = ΔR σ ΔR^T + Δσ is the Jaumann rate integrated in an incrementally objective way.
 //! A rigid rotation dF = Q (below 180° per step) gives Δε = 0 and ΔR = Q exactly.
-//! Throws std::runtime_error when dF + I is singular (a step that inverts the material).
+//! Throws std::runtime_error when det dF <= 0 or dF + I is singular (a step that inverts
+//! the material point).
 StrainIncrement split_increment(const Mat3& dF);
 
 //! Rotate a symmetric tensor: R t R^T.

@@ -134,6 +134,9 @@ TEST(LinearElastic, UpdatesOnlyTheBatchItIsGivenInItsOrder) {
   EXPECT_THROW(m.update({5}, {a}, 0.1, out), std::out_of_range);
   EXPECT_THROW(m.update({0, 1}, {a}, 0.1, out), std::invalid_argument);
   EXPECT_THROW(m.update({0}, {-Mat3::Identity()}, 0.1, out), std::runtime_error);
+  Mat3 flipped = Mat3::Identity();
+  flipped(0, 0) = -0.5;  // det dF < 0 with dF + I regular
+  EXPECT_THROW(m.update({0}, {flipped}, 0.1, out), std::runtime_error);
 }
 
 }  // namespace
