@@ -168,6 +168,18 @@ void read_bodies(const CaseNode& root, MpmCase& c) {
   }
 }
 
+//! Whether some grid node lies in `box` (tolerance 1e-9 cell, as the solver selects them).
+bool box_holds_a_node(const Box& box, const MpmCase& c) {
+  for (int d = 0; d < c.dimension; ++d) {
+    const double h = c.size[d] / c.cells[d], tol = 1e-9 * h;
+    const double first = std::ceil((box.min[d] - tol - c.origin[d]) / h);
+    const double last = std::floor((box.max[d] + tol - c.origin[d]) / h);
+    if (std::max(first, 0.0) > std::min(last, static_cast<double>(c.cells[d])))
+      return false;
+  }
+  return true;
+}
+
 NodeSelector read_nodes(const CaseNode& node, const MpmCase& c) {
   const CaseNode n = node.child("nodes");
   if (n.has("box") == n.has("face"))
@@ -175,6 +187,8 @@ NodeSelector read_nodes(const CaseNode& node, const MpmCase& c) {
   NodeSelector s;
   if (n.has("box")) {
     s.box = read_box(n, "box", c.dimension);
+    if (!box_holds_a_node(s.box, c))
+      n.fail("box", "contains no grid node");
     return s;
   }
   std::vector<std::string> faces;
@@ -201,6 +215,11 @@ void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
       Traction t;
       t.points = read_box(b, "points", c.dimension);
       t.traction = read_vector(b, "traction", c.dimension);
+      const bool on_a_body = std::any_of(c.bodies.begin(), c.bodies.end(), [&](const Body& body) {
+        return overlap(t.points, body.box, c.dimension);
+      });
+      if (!on_a_body)
+        b.fail("points", "the box holds no material point (it overlaps no body)");
       t.function = TimeFunction::read(b, "function");
       c.tractions.push_back(std::move(t));
       continue;

@@ -47,23 +47,26 @@ double plateau(const LoadCurve& c, double lo, double hi) {
   return sum / n;
 }
 
+//! Runs case `name` and compares its plateau q (over lo <= d/B <= hi) divided by `unit`
+//! with `exact`, within the relative `tolerance`.
+void check_collapse_load(const std::string& name, double lo, double hi, double unit, double exact,
+                         double tolerance) {
+  const double measured = plateau(run_footing(name), lo, hi) / unit;
+  std::printf("%s: q_u / %g Pa = %.4f, theory %.4f, error %.2f %%\n", name.c_str(), unit, measured,
+              exact, 100.0 * (measured / exact - 1.0));
+  EXPECT_NEAR(measured, exact, tolerance * exact);
+}
+
 TEST(Footing, PrandtlOnTrescaSoil) {
-  const double cu = 1.0e4, exact = 2.0 + M_PI;
-  const LoadCurve curve = run_footing("prandtl_tresca");
-  const double nc = plateau(curve, 0.025, 0.05) / cu;
-  std::printf("Prandtl: q_u/c_u = %.4f (2 + pi = %.4f), error %.2f %%\n", nc, exact,
-              100.0 * (nc / exact - 1.0));
-  EXPECT_NEAR(nc, exact, 0.05 * exact);
+  // q_u = (2 + pi) c_u, c_u = 10 kPa.
+  check_collapse_load("prandtl_tresca", 0.025, 0.05, 1.0e4, 2.0 + M_PI, 0.05);
 }
 
 TEST(Footing, VesicNqOnWeightlessMohrCoulombSoil) {
-  const double phi = 28.1 * M_PI / 180.0, surcharge = 1.0e4;
+  // q_u = N_q q0, q0 = 10 kPa, N_q = tan^2(pi/4 + phi/2) exp(pi tan phi), phi = 28.1 deg.
+  const double phi = 28.1 * M_PI / 180.0;
   const double nq = std::pow(std::tan(M_PI / 4 + phi / 2), 2) * std::exp(M_PI * std::tan(phi));
-  const LoadCurve curve = run_footing("vesic_mohr_coulomb");
-  const double ratio = plateau(curve, 0.015, 0.04) / surcharge;
-  std::printf("Vesic: q_u/q = %.3f (N_q = %.3f), error %.2f %%\n", ratio, nq,
-              100.0 * (ratio / nq - 1.0));
-  EXPECT_NEAR(ratio, nq, 0.15 * nq);
+  check_collapse_load("vesic_mohr_coulomb", 0.015, 0.04, 1.0e4, nq, 0.15);
 }
 
 TEST(Footing, LargePenetrationWithGimpIsSmooth) {
