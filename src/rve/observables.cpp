@@ -51,12 +51,14 @@ void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact
   out.grains = static_cast<long>(grains.x.size());
   out.contacts = 0;
   out.elastic_energy = 0.0;
+  std::vector<char> loaded(grains.x.size(), 0);
   for (const auto& c : contacts) {
     const double distance = c.branch.norm();
     const double fn = std::abs(c.force.dot(c.branch)) / distance;
     if (fn <= 0.0)
       continue;
     ++out.contacts;
+    loaded[c.id_i - 1] = loaded[c.id_j - 1] = 1;
     const double overlap =
         grains.radius[c.id_i - 1] + grains.radius[c.id_j - 1] - distance;  // ids start at 1
     if (overlap > 0.0) {
@@ -69,6 +71,10 @@ void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact
   out.coordination_number = out.grains > 0 ? 2.0 * out.contacts / out.grains : 0.0;
   out.kinetic_energy = 0.0;
   for (std::size_t i = 0; i < grains.x.size(); ++i) {
+    // Rattlers (no contact) fly freely and undamped without touching the stress: leave
+    // them out, or a packing at rest never looks at rest.
+    if (!loaded[i])
+      continue;
     const Vec3 fluctuation = grains.v[i] - streaming * (grains.x[i] - origin);
     const double inertia = 0.4 * grains.mass[i] * grains.radius[i] * grains.radius[i];
     out.kinetic_energy += 0.5 * grains.mass[i] * fluctuation.squaredNorm() +

@@ -12,7 +12,7 @@ struct Observables {
   Mat3 stress = Mat3::Zero();        //!< Cauchy stress, tension positive [Pa]
   double void_ratio = 0.0;           //!< (cell - solid) / solid; areas in 2D
   double coordination_number = 0.0;  //!< 2 N_contacts / N_grains
-  double kinetic_energy = 0.0;       //!< of the velocity fluctuations and rotations [J]
+  double kinetic_energy = 0.0;       //!< fluctuations + rotations of grains in contact [J]
   double elastic_energy = 0.0;       //!< normal Hertz energy Σ 2/5 F_n δ [J]
   long contacts = 0;
   double mean_overlap_strain = 0.0;  //!< mean overlap / branch length over contacts

@@ -147,6 +147,11 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   s.log_file = node.get_or<std::string>("log_file", "");
   s.stream_velocity = node.choice_or("affine_motion", {"streaming_velocity", "remap_positions"},
                                      "remap_positions") == "streaming_velocity";
+  if (s.stream_velocity && s.dimension == 2)
+    node.fail("affine_motion",
+              "streaming_velocity is not available for 2D RVEs (measured: the "
+              "kinetic energy of a 2D packing does not decay with it); use "
+              "remap_positions");
   s.max_kinetic_ratio = node.positive_or("max_kinetic_ratio", 1.0);
 
   s.contact = parse_contact(node.child("contact"));

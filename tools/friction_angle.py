@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Macroscopic friction angle from drained biaxial/triaxial element tests.
+
+usage: friction_angle.py RUN_DIR RUN_DIR [...] [--json OUT.json]
+
+Each RUN_DIR holds history.csv and summary.json of one mpm_lig element test. For every run the
+peak state is the row of largest stress ratio (σ1 − σ3)/(σ1 + σ3) (principal stresses,
+compression positive; in-plane for 2D runs). A straight line through the peak states in the
+plane s = (σ1 + σ3)/2, t = (σ1 − σ3)/2 (Mohr–Coulomb: t = s sin φ' + c' cos φ') gives φ' and c'.
+With runs at two or more confining pressures the fit separates friction from cohesion; the
+per-run mobilised angles are printed too.
+"""
+import argparse
+import csv
+import json
+import math
+import sys
+
+import numpy as np
+
+
+def principal(row, dimension):
+    s = np.array([[row["s_xx"], row["s_xy"], row["s_xz"]],
+                  [row["s_xy"], row["s_yy"], row["s_yz"]],
+                  [row["s_xz"], row["s_yz"], row["s_zz"]]])
+    if dimension == 2:
+        s = s[:2, :2]
+    eig = np.linalg.eigvalsh(-s)  # compression positive, ascending
+    return eig[-1], eig[0]
+
+
+def peak_state(run_dir):
+    summary = json.load(open(f"{run_dir}/summary.json"))
+    dimension = summary["dimension"]
+    best = None
+    with open(f"{run_dir}/history.csv") as f:
+        for raw in csv.DictReader(f):
+            row = {k: float(v) for k, v in raw.items()}
+            s1, s3 = principal(row, dimension)
+            if s1 + s3 <= 0:
+                continue
+            ratio = (s1 - s3) / (s1 + s3)
+            if best is None or ratio > best[0]:
+                best = (ratio, s1, s3)
+    if best is None:
+        sys.exit(f"{run_dir}: no loaded state in history.csv")
+    return summary, best
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    parser.add_argument("runs", nargs="+")
+    parser.add_argument("--json", help="write the result here")
+    args = parser.parse_args()
+    s_points, t_points, rows = [], [], []
+    for run in args.runs:
+        summary, (ratio, s1, s3) = peak_state(run)
+        s, t = 0.5 * (s1 + s3), 0.5 * (s1 - s3)
+        s_points.append(s)
+        t_points.append(t)
+        rows.append({"run": run, "test": summary.get("test"), "sigma1": s1, "sigma3": s3,
+                     "mobilised_friction_deg": math.degrees(math.asin(ratio))})
+    print(f"{'run':40s} {'sigma3 [kPa]':>12s} {'sigma1 [kPa]':>12s} {'phi_mob [deg]':>13s}")
+    for r in rows:
+        print(f"{r['run']:40s} {r['sigma3']/1e3:12.1f} {r['sigma1']/1e3:12.1f} "
+              f"{r['mobilised_friction_deg']:13.2f}")
+    result = {"runs": rows}
+    spread = (max(s_points) - min(s_points)) / (sum(s_points) / len(s_points))
+    if len(rows) >= 2 and spread < 0.2:
+        print("the runs' mean stresses at peak differ by less than 20 %: no fit (give runs at "
+              "clearly different confining pressures)")
+    elif len(rows) >= 2:
+        slope, intercept = np.polyfit(s_points, t_points, 1)
+        slope = min(max(slope, -1.0), 1.0)
+        phi = math.asin(slope)
+        cohesion = intercept / math.cos(phi)
+        result.update({"friction_angle_deg": math.degrees(phi), "cohesion_pa": cohesion})
+        print(f"Mohr-Coulomb fit of {len(rows)} peak states: phi' = {math.degrees(phi):.2f} deg, "
+              f"c' = {cohesion/1e3:.2f} kPa")
+    else:
+        print("one run only: give runs at two or more confining pressures for a fit")
+    if args.json:
+        json.dump(result, open(args.json, "w"), indent=2)
+
+
+if __name__ == "__main__":
+    main()
