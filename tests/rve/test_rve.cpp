@@ -167,3 +167,27 @@ TEST(RveKinematics, QrSplitKeepsRotationOutsideTheBox) {
   EXPECT_NEAR(reduced.determinant(), skew.determinant(), 1e-16);
   EXPECT_LE(std::abs(reduced(0, 1)), 0.5 * reduced(0, 0));
 }
+
+// 3D with streaming velocities (the 3D default): rotation about an oblique axis.
+TEST(RveStreaming, RigidRotationAboutObliqueAxisGivesNoSpuriousStress) {
+  const rve::RveSpec spec = make_spec("liggghts", 3, 100);
+  ASSERT_TRUE(spec.stream_velocity);
+  auto r = rve::Rve::generate(spec, MPI_COMM_WORLD, "3D RVE");
+  rve::consolidate(*r);
+  const std::string file = std::string(MPM_LIG_BINARY_DIR) + "/test_rve_3d.restart";
+  r->write_restart(file);
+  auto still = rve::Rve::from_restart(spec, file, MPI_COMM_WORLD, "still");
+  const Vec3 axis = Vec3(1.0, 2.0, 3.0).normalized();
+  const int increments = 18;
+  const Mat3 step = Eigen::AngleAxisd(M_PI / 2 / increments, axis).toRotationMatrix();
+  for (int k = 0; k < increments; ++k) {
+    r->deform(step, 20);
+    still->relax(20);
+  }
+  const Mat3 q = Eigen::AngleAxisd(M_PI / 2, axis).toRotationMatrix();
+  const Mat3 s0 = still->stress(), s = r->stress();
+  const double p0 = rve::mean_stress(s0, 3);
+  EXPECT_NEAR(rve::mean_stress(s, 3), p0, 0.01 * p0);
+  EXPECT_NEAR(rve::deviator_stress(s, 3), rve::deviator_stress(s0, 3), 0.01 * p0);
+  EXPECT_LT((s - q * s0 * q.transpose()).norm(), 0.01 * p0);
+}
