@@ -69,15 +69,25 @@ void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact
   if (out.contacts > 0)
     out.mean_overlap_strain /= static_cast<double>(out.contacts);
   out.coordination_number = out.grains > 0 ? 2.0 * out.contacts / out.grains : 0.0;
+  // Fluctuations about the affine field and about the mean motion (a uniform drift of a
+  // periodic packing is no deformation).
+  std::vector<Vec3> fluctuation(grains.x.size());
+  Vec3 momentum = Vec3::Zero();
+  double mass = 0.0;
+  for (std::size_t i = 0; i < grains.x.size(); ++i) {
+    fluctuation[i] = grains.v[i] - streaming * (grains.x[i] - origin);
+    momentum += grains.mass[i] * fluctuation[i];
+    mass += grains.mass[i];
+  }
+  const Vec3 drift = mass > 0.0 ? Vec3(momentum / mass) : Vec3::Zero();
   out.kinetic_energy = 0.0;
   for (std::size_t i = 0; i < grains.x.size(); ++i) {
     // Rattlers (no contact) fly freely and undamped without touching the stress: leave
     // them out, or a packing at rest never looks at rest.
     if (!loaded[i])
       continue;
-    const Vec3 fluctuation = grains.v[i] - streaming * (grains.x[i] - origin);
     const double inertia = 0.4 * grains.mass[i] * grains.radius[i] * grains.radius[i];
-    out.kinetic_energy += 0.5 * grains.mass[i] * fluctuation.squaredNorm() +
+    out.kinetic_energy += 0.5 * grains.mass[i] * (fluctuation[i] - drift).squaredNorm() +
                           0.5 * inertia * grains.omega[i].squaredNorm();
   }
 }

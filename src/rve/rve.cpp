@@ -140,7 +140,11 @@ void Rve::set_streaming(const Mat3& gradient) {
     script << '\n';
   }
   script << "velocity all set v_mpm_stream_x v_mpm_stream_y "
-         << (spec_.dimension == 3 ? "v_mpm_stream_z" : "NULL") << " sum yes units box\n";
+         << (spec_.dimension == 3 ? "v_mpm_stream_z" : "NULL")
+         << " sum yes units box\n"
+         // Grains wrapped across the cell between two changes of the field would otherwise
+         // leave a net momentum: an undamped drift of the whole packing.
+         << "velocity all zero linear\n";
   engine_->commands(script.str());
   streaming_ = gradient;
 }

@@ -145,18 +145,11 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   if (s.dimension != 2 && s.dimension != 3)
     node.fail("dimension", "must be 2 (discs) or 3 (spheres), got " + std::to_string(s.dimension));
   s.log_file = node.get_or<std::string>("log_file", "");
-  // Default by measurement (README, method notes): streaming velocity in 3D (its quasi-static
-  // strength converges as the strain rate goes down, remap of positions does not); 2D only
-  // works with remapped positions.
-  const std::string affine =
-      node.choice_or("affine_motion", {"streaming_velocity", "remap_positions"},
-                     s.dimension == 3 ? "streaming_velocity" : "remap_positions");
+  // Default by measurement (README, method notes): with streaming velocities the quasi-static
+  // strength converges as the strain rate goes down; with remapped positions it does not.
+  const std::string affine = node.choice_or(
+      "affine_motion", {"streaming_velocity", "remap_positions"}, "streaming_velocity");
   s.stream_velocity = affine == "streaming_velocity";
-  if (s.stream_velocity && s.dimension == 2)
-    node.fail("affine_motion",
-              "streaming_velocity is not available for 2D RVEs (measured: the "
-              "kinetic energy of a 2D packing does not decay with it); use "
-              "remap_positions");
   s.max_kinetic_ratio = node.positive_or("max_kinetic_ratio", 1.0);
 
   s.contact = parse_contact(node.child("contact"));
@@ -167,6 +160,8 @@ RveSpec parse_rve_spec(const CaseNode& node) {
                                     : SubstepSpec{0, 1e-3, 10, 100000};
 
   // A restart file carries the packing; grain data and preparation are then not read.
+  if (node.has("restart_file") == node.has("preparation"))
+    node.fail("give exactly one of preparation (prepare a fresh packing) and restart_file");
   if (node.has("restart_file")) {
     s.restart_file = node.get<std::string>("restart_file");
     if (!std::filesystem::is_regular_file(s.restart_file))

@@ -62,7 +62,7 @@ struct RveSpec {
   PreparationSpec preparation;
   std::string restart_file;  //!< start from this engine restart instead of preparing
   SubstepSpec substeps;
-  bool stream_velocity = false;    //!< affine motion by streaming velocity (remap v) or remap x
+  bool stream_velocity = true;     //!< affine motion by streaming velocity (remap v) or remap x
   double thickness = 0.0;          //!< 2D: out-of-plane thickness that turns N/m into Pa
   double max_kinetic_ratio = 1.0;  //!< health limit on kinetic / elastic energy
   std::string log_file;            //!< engine log for debugging ("" = none)
