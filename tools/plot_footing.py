@@ -1,0 +1,122 @@
+#!/usr/bin/python3
+"""Normalised load-settlement curve of a strip footing (seed Fig. 6) with bearing-capacity lines.
+
+usage: plot_footing.py OUTPUT_DIR [-o picture.png] [--case CASE.json] [--width B]
+                       [--surcharge q_s | --cu c_u] [--phi DEG] [--prandtl]
+
+Reads OUTPUT_DIR/history.csv (settlement [m], load, q [Pa] of the first footing) and
+summary.json when present (its peak_q is cross-checked). The footing width B comes from
+--width or from --case (rigid_bodies[0].width[0], the full width also for a half model). q is
+divided by the surcharge q_s (--surcharge, or the case's surface traction) or by the undrained
+strength c_u (--cu, or the case's tresca material); the horizontal lines are Vesic's
+N_q = tan^2(pi/4 + phi/2) exp(pi tan phi) for --phi DEG (over q_s) and Prandtl's 2 + pi
+(--prandtl, over c_u). Without a normaliser q is plotted in kPa.
+"""
+import math
+import os
+
+import numpy as np
+
+from mpm_lig_post import cli, figures
+from mpm_lig_post.errors import InputError
+from mpm_lig_post.tables import read_history, read_json, require_columns
+
+
+def vesic_nq(phi_deg):
+    """N_q = tan^2(pi/4 + phi/2) e^{pi tan phi} (Prandtl-Reissner, as in Vesic 1973)."""
+    phi = math.radians(phi_deg)
+    return math.tan(math.pi / 4 + phi / 2) ** 2 * math.exp(math.pi * math.tan(phi))
+
+
+def case_values(path):
+    """(B, q_s, c_u) read from a case file; None where it does not say."""
+    case = read_json(path)
+    width = surcharge = cu = None
+    try:
+        width = float(case["rigid_bodies"][0]["width"][0])
+    except (KeyError, IndexError, TypeError, ValueError):
+        pass
+    for bc in case.get("boundary_conditions", []):
+        if bc.get("type") == "traction" and bc.get("traction"):
+            surcharge = abs(float(bc["traction"][-1]))
+    for m in case.get("materials", []):
+        if m.get("type") == "tresca" and "undrained_strength" in m:
+            cu = float(m["undrained_strength"])
+    return width, surcharge, cu
+
+
+def main():
+    p = cli.parser(__doc__.split("\n")[0], "footing.png")
+    p.add_argument("--case", help="the run's case file (footing width, surcharge, c_u)")
+    p.add_argument("--width", type=float, help="footing width B [m]")
+    norm = p.add_mutually_exclusive_group()
+    norm.add_argument("--surcharge", type=float, help="surcharge q_s [Pa]: plot q/q_s")
+    norm.add_argument("--cu", type=float, help="undrained strength c_u [Pa]: plot q/c_u")
+    p.add_argument("--phi", type=float, help="friction angle phi' [deg]: draw Vesic's N_q")
+    p.add_argument("--prandtl", action="store_true", help="draw Prandtl's 2 + pi")
+    args = p.parse_args()
+    directory = cli.output_dir(args)
+    path = os.path.join(directory, "history.csv")
+    table = read_history(path)
+    require_columns(table, ("settlement", "q"), path)
+    width, surcharge, cu = case_values(args.case) if args.case else (None, None, None)
+    width = args.width or width
+    if width is None:
+        raise InputError("footing width unknown: give --width B or --case CASE.json "
+                         "(with rigid_bodies[0].width)")
+    if width <= 0:
+        raise InputError(f"footing width must be > 0, got {width}")
+    if args.surcharge is not None or args.cu is not None:
+        surcharge, cu = args.surcharge, args.cu
+    elif surcharge is not None and cu is not None:
+        cu = None if args.phi is not None else cu
+        surcharge = None if cu is not None else surcharge
+    if args.phi is not None and surcharge is None:
+        raise InputError("--phi needs the surcharge: give --surcharge q_s or a --case "
+                         "with a traction boundary condition")
+    if args.prandtl and cu is None:
+        raise InputError("--prandtl needs c_u: give --cu or a --case with a tresca material")
+    for name, value in (("surcharge", surcharge), ("cu", cu)):
+        if value is not None and value <= 0:
+            raise InputError(f"--{name} must be > 0, got {value}")
+
+    settlement, q = table["settlement"] / width, table["q"]
+    if surcharge is not None:
+        y, ylabel, scale = q / surcharge, r"normalised load $q/q_s$", surcharge
+    elif cu is not None:
+        y, ylabel, scale = q / cu, r"normalised load $q/c_u$", cu
+    else:
+        y, ylabel, scale = q / 1e3, r"footing pressure $q$ [kPa]", 1e3
+    peak = int(np.argmax(y))
+    print(f"B = {width:g} m, peak q = {q[peak]:.6g} Pa at s/B = {settlement[peak]:.4g}, "
+          f"peak {ylabel.split('$')[1] if scale != 1e3 else 'q [kPa]'} = {y[peak]:.4g}")
+    summary = read_json(os.path.join(directory, "summary.json"), required=False)
+    if summary and "peak_q" in summary and not np.isclose(summary["peak_q"], q.max(), rtol=1e-3):
+        print(f"note: summary.json peak_q = {summary['peak_q']:.6g} Pa differs from the "
+              f"history's {q.max():.6g} Pa (history_every > 1 misses the exact peak)")
+
+    fig, ax = figures.subplots(figsize=(6.4, 4.6))
+    ax.plot(settlement, y, color="k", label="MPM")
+    ax.plot(settlement[peak], y[peak], "o", color="k", ms=5, mfc="w",
+            label=f"peak {y[peak]:.3g}")
+    if args.phi is not None:
+        nq = vesic_nq(args.phi)
+        print(f"Vesic N_q({args.phi:g} deg) = {nq:.4g}; peak / N_q = {y[peak] / nq:.3f}")
+        ax.axhline(nq, color="C0", ls="--",
+                   label=rf"Vesić $N_q$ = {nq:.3g} ($\varphi'$ = {args.phi:g}°)")
+    if args.prandtl:
+        nc = 2 + math.pi
+        print(f"Prandtl 2 + pi = {nc:.4g}; peak / (2 + pi) = {y[peak] / nc:.3f}")
+        ax.axhline(nc, color="C3", ls="-.", label=r"Prandtl $2+\pi$ = 5.14")
+    ax.set_xlabel(r"normalised settlement $s/B$ [–]")
+    ax.set_ylabel(ylabel)
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.legend(loc="lower right", frameon=False)
+    ax.set_title(f"strip footing, B = {width:g} m: {os.path.basename(os.path.abspath(directory))}")
+    fig.tight_layout()
+    figures.save(fig, cli.picture_path(args))
+
+
+if __name__ == "__main__":
+    cli.run(main)

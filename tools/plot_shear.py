@@ -1,0 +1,125 @@
+#!/usr/bin/python3
+"""Cyclic simple shear: shear stress-strain loops and stress path (seed Fig. 3).
+
+usage: plot_shear.py OUTPUT_DIR [-o picture.png]
+
+Reads OUTPUT_DIR/history.csv, either of an MPM cyclic simple shear run (columns
+shear_strain, shear_stress, mean_stress, optional cycle) or of an element test (gamma_xy or
+e_xy, s_xy, p). Stresses in Pa, mean stress compression positive (an MPM mean_stress that is
+negative throughout is read as tension positive and flipped); shear strain is the engineering
+strain gamma (element test: gamma_xy, else 2 e_xy). Without a cycle column the cycles are
+counted along the strain path 0 -> +gamma_a -> -gamma_a -> 0. Prints per cycle the secant
+shear modulus G_sec = (tau(gamma_max) - tau(gamma_min)) / (gamma_max - gamma_min) and the
+mean-stress ratio p_end/p0 (p0: first row; 1 - p/p0 is the pore-pressure ratio of the
+equivalent undrained test).
+"""
+import os
+
+import numpy as np
+
+from mpm_lig_post import cli, figures
+from mpm_lig_post.errors import InputError
+from mpm_lig_post.tables import read_history, require_columns
+
+MPM_COLUMNS = ("shear_strain", "shear_stress", "mean_stress")
+
+
+def shear_series(table, path):
+    """(gamma, tau, p, cycle or None) from either history layout."""
+    if any(name in table for name in MPM_COLUMNS):
+        require_columns(table, MPM_COLUMNS, path)
+        p = table["mean_stress"]
+        if np.median(p) < 0:
+            print("note: mean_stress is negative (tension positive): plotting p = -mean_stress")
+            p = -p
+        return table["shear_strain"], table["shear_stress"], p, table.get("cycle")
+    strain = "gamma_xy" if "gamma_xy" in table else "e_xy"
+    require_columns(table, ("s_xy", strain, "p"), path)
+    gamma = table["gamma_xy"] if strain == "gamma_xy" else 2.0 * table["e_xy"]
+    return gamma, table["s_xy"], table["p"], None
+
+
+def count_cycles(gamma):
+    """Cycle number (1, 2, ...) of each row from the strain path length: one cycle is
+    4 gamma_a (0 -> +a -> -a -> 0); the row that closes a cycle belongs to it."""
+    amplitude = np.max(np.abs(gamma))
+    if amplitude <= 0:
+        return np.ones(len(gamma), dtype=int)
+    travelled = np.concatenate(([0.0], np.cumsum(np.abs(np.diff(gamma)))))
+    return np.maximum(1, np.ceil(travelled / (4 * amplitude) - 1e-6)).astype(int)
+
+
+def cycle_table(gamma, tau, p, cycle):
+    """Per cycle: (cycle, gamma_a, tau_max, G_sec, p_end, p_end/p0)."""
+    rows = []
+    for c in np.unique(cycle):
+        idx = np.flatnonzero(cycle == c)
+        if idx[0] > 0:  # the cycle starts where the previous one ended
+            idx = np.concatenate(([idx[0] - 1], idx))
+        g, t = gamma[idx], tau[idx]
+        hi, lo = np.argmax(g), np.argmin(g)
+        span = g[hi] - g[lo]
+        modulus = (t[hi] - t[lo]) / span if span > 0 else np.nan
+        rows.append((int(c), 0.5 * span, np.max(np.abs(t)), modulus, p[idx[-1]],
+                     p[idx[-1]] / p[0] if p[0] != 0 else np.nan))
+    return rows
+
+
+def print_table(rows):
+    print(f"{'cycle':>5} {'gamma_a [%]':>11} {'|tau|max [kPa]':>14} {'G_sec [MPa]':>11} "
+          f"{'G/G_1':>6} {'p_end [kPa]':>11} {'p_end/p0':>8}")
+    g1 = rows[0][3]
+    for c, amp, tmax, g, pe, ratio in rows:
+        print(f"{c:5d} {100 * amp:11.4g} {tmax / 1e3:14.4g} {g / 1e6:11.4g} "
+              f"{g / g1:6.3f} {pe / 1e3:11.4g} {ratio:8.3f}")
+
+
+def draw(gamma, tau, p, cycle, title, png):
+    fig, (loops, path) = figures.subplots(1, 2, figsize=(10.5, 4.3))
+    cycles = np.unique(cycle)
+    colours = figures.plt.cm.viridis(np.linspace(0.0, 0.9, len(cycles)))
+    for c, colour in zip(cycles, colours):
+        idx = np.flatnonzero(cycle == c)
+        if idx[0] > 0:
+            idx = np.concatenate(([idx[0] - 1], idx))
+        label = f"cycle {c}" if len(cycles) <= 12 else None
+        loops.plot(100 * gamma[idx], tau[idx] / 1e3, color=colour, label=label)
+        path.plot(p[idx] / 1e3, tau[idx] / 1e3, color=colour, label=label)
+    path.plot(p[0] / 1e3, tau[0] / 1e3, "o", color="k", ms=5, label="start")
+    path.plot(p[-1] / 1e3, tau[-1] / 1e3, "s", color="C3", ms=5, label="end")
+    loops.set_xlabel(r"shear strain $\gamma$ [%]")
+    loops.set_ylabel(r"shear stress $\tau$ [kPa]")
+    loops.set_title("(a) stress-strain loops")
+    path.set_xlabel(r"mean effective stress $p'$ [kPa]")
+    path.set_ylabel(r"shear stress $\tau$ [kPa]")
+    path.set_title("(b) stress path")
+    path.set_xlim(0, 1.05 * max(np.max(p), 1e-12) / 1e3)
+    for ax in (loops, path):
+        ax.axhline(0, color="0.6", lw=0.6, zorder=0)
+    loops.axvline(0, color="0.6", lw=0.6, zorder=0)
+    path.legend(loc="best", frameon=False, ncol=2 if len(cycles) > 5 else 1)
+    if len(cycles) > 12:
+        sm = figures.plt.cm.ScalarMappable(cmap="viridis", norm=figures.plt.Normalize(
+            cycles[0], cycles[-1] / 0.9))
+        fig.colorbar(sm, ax=loops, label="cycle")
+    fig.suptitle(title)
+    fig.tight_layout()
+    figures.save(fig, png)
+
+
+def main():
+    args = cli.parser(__doc__.split("\n")[0], "shear.png").parse_args()
+    directory = cli.output_dir(args)
+    path = os.path.join(directory, "history.csv")
+    gamma, tau, p, cycle = shear_series(read_history(path), path)
+    cycle = count_cycles(gamma) if cycle is None else np.rint(cycle).astype(int)
+    rows = cycle_table(gamma, tau, p, cycle)
+    print_table(rows)
+    if len(gamma) < 2:
+        raise InputError(f"{path}: needs at least two rows")
+    draw(gamma, tau, p, cycle, f"cyclic simple shear: {os.path.basename(os.path.abspath(directory))}",
+         cli.picture_path(args))
+
+
+if __name__ == "__main__":
+    cli.run(main)
