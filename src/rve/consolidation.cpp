@@ -12,14 +12,6 @@ constexpr int kChunk = 100;
 //! A relaxed packing: kinetic energy this small against the elastic energy.
 constexpr double kAtRest = 2e-3;
 
-//! Isotropic increment of the (in-plane in 2D) strain by `strain` per axis.
-Mat3 isotropic_increment(double strain, int dimension) {
-  Mat3 dF = Mat3::Identity() * (1.0 + strain);
-  if (dimension == 2)
-    dF(2, 2) = 1.0;
-  return dF;
-}
-
 //! Fastest servo strain rate: inertial number 5e-3 at the target pressure unless asked.
 double max_strain_rate(const RveSpec& spec, double pressure) {
   if (spec.preparation.max_strain_rate > 0.0)
@@ -37,14 +29,20 @@ Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& s
   int settled = 0;
   while (steps_left > 0) {
     const double p = mean_stress(now.stress, dim);
-    double strain = -max_step;  // loose: close the gaps at full speed
-    if (p > 0.2 * pressure && now.mean_overlap_strain > 0.0) {
-      // Affine Hertz stiffness dp/dε = 1.5 p / (δ/d): an upper bound of the packing's, so
-      // the correction never overshoots (it converges geometrically instead).
-      const double stiffness = 1.5 * p / now.mean_overlap_strain;
-      strain = std::clamp(-0.5 * (pressure - p) / stiffness, -max_step, max_step);
+    // Each axis is driven towards the target on its own, so that the normal stresses end up
+    // equal (not only their mean); shear stresses of the fabric are not controlled.
+    Mat3 dF = Mat3::Identity();
+    for (int i = 0; i < dim; ++i) {
+      double strain = -max_step;  // loose: close the gaps at full speed
+      if (p > 0.2 * pressure && now.mean_overlap_strain > 0.0) {
+        // Affine Hertz stiffness dp/dε = 1.5 p / (δ/d): an upper bound of the packing's, so
+        // the correction never overshoots (it converges geometrically instead).
+        const double stiffness = 1.5 * p / now.mean_overlap_strain;
+        strain = std::clamp(-0.5 * (pressure + now.stress(i, i)) / stiffness, -max_step, max_step);
+      }
+      dF(i, i) = 1.0 + strain;
     }
-    rve.deform(isotropic_increment(strain, dim), kChunk);
+    rve.deform(dF, kChunk);
     steps_left -= kChunk;
     now = rve.observe();
     const double p_new = mean_stress(now.stress, dim);
