@@ -8,7 +8,9 @@ namespace mpm_lig::rve {
 void write_snapshot(Rve& rve, const std::string& prefix, bool writer) {
   const GrainState grains = gather_grains(rve.engine());
   const std::vector<dem::Contact> contacts = rve.engine().contacts();
-  const Vec3 lo = rve.engine().box().lo;
+  Vec3 lo = rve.engine().box().lo;
+  if (rve.spec().dimension == 2)
+    lo.z() = 0.0;  // discs stay in the plane z = 0
   if (!writer)
     return;
   const Mat3& q = rve.rotation();
