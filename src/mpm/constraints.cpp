@@ -39,18 +39,24 @@ void NodeConstraints<D>::apply(Grid<D>& grid, double t, double scale, double dt,
         continue;
       Vec& v = grid.velocity_new[node];
       const Vec trial = v;
+      Vec held = Vec::Zero();  // 1 on the components this constraint imposes
       switch (c.type) {
         case Constraint::Type::fixed:
           v.setZero();
+          held.setOnes();
           break;
         case Constraint::Type::roller:
           v[c.direction] = 0.0;
+          held[c.direction] = 1.0;
           break;
         case Constraint::Type::velocity:
           v[c.direction] = scale * c.velocity * c.function.at(t);
+          held[c.direction] = 1.0;
           break;
       }
-      reaction += m * (v - trial) / dt;
+      // The impulse that imposes v, plus the damping force on the imposed components:
+      // the constraint, not the (fictitious) damping, holds the node.
+      reaction += m * (v - trial) / dt + held.cwiseProduct(grid.damping[node]);
     }
     if (record)
       reactions_[k] = reaction;

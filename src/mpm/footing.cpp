@@ -48,12 +48,18 @@ void RigidFooting<D>::apply(Grid<D>& grid, double t, double scale, double dt, bo
     if (w <= 0.0 || v[up] <= vf)  // not reached, or the material moves away from the base
       continue;
     const Vec trial = v;
+    Vec held = Vec::Zero();
     v[up] = (1.0 - w) * v[up] + w * vf;
+    held[up] = w;
     if (spec_.rough) {
-      for (int d = 0; d < up; ++d)
+      for (int d = 0; d < up; ++d) {
         v[d] = (1.0 - w) * v[d];
+        held[d] = w;
+      }
     }
-    reaction += m * (v - trial) / dt;
+    // As for node constraints: the footing also takes the damping force on what it imposes,
+    // else the load would carry the damping (up to a factor 1 + damping).
+    reaction += m * (v - trial) / dt + held.cwiseProduct(grid.damping[node]);
   }
   if (record) {
     load_ = -reaction[up];

@@ -16,6 +16,7 @@ Grid<D>::Grid(const Vec& origin, const Vec& size, const std::array<int, D>& cell
   force.assign(count, Vec::Zero());
   velocity.assign(count, Vec::Zero());
   velocity_new.assign(count, Vec::Zero());
+  damping.assign(count, Vec::Zero());
 }
 
 template <int D>

@@ -40,6 +40,9 @@ class Grid {
   std::vector<Vec> force;         //!< internal + external [N]
   std::vector<Vec> velocity;      //!< at the start of the step [m/s]
   std::vector<Vec> velocity_new;  //!< after the update and the constraints [m/s]
+  //! Damping force of the step (already in velocity_new) [N]: a constraint that fixes a
+  //! component also takes its damping force, so reactions are the physical ones.
+  std::vector<Vec> damping;
 
  private:
   Vec origin_;

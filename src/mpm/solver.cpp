@@ -202,6 +202,7 @@ void Solver<D>::update_grid() {
       grid_.mass[i] = 0.0;
       grid_.velocity[i].setZero();
       grid_.velocity_new[i].setZero();
+      grid_.damping[i].setZero();
       continue;
     }
     const Vec v = grid_.momentum[i] / m;
@@ -212,6 +213,7 @@ void Solver<D>::update_grid() {
       if (v[d] != 0.0)
         f[d] -= damping_ * std::abs(f[d]) * (v[d] > 0.0 ? 1.0 : -1.0);
     }
+    grid_.damping[i] = f - grid_.force[i];
     grid_.velocity[i] = v;
     grid_.velocity_new[i] = v + f * (dt_ / m);
   }

@@ -33,7 +33,9 @@ LoadCurve run_footing(const std::string& name) {
 }
 
 //! Mean q over lo <= d/B <= hi: the plateau of the load curve once the mechanism has formed
-//! (explicit MPM load curves carry some noise, so one sample is not the answer).
+//! (explicit MPM load curves carry some noise, so one sample is not the answer). Both
+//! footing tests use d/B in [0.015, 0.03]: past the knee of the curve, before the heave
+//! beside the footing and the embedment lift it (by about 5 % at d/B = 0.05).
 double plateau(const LoadCurve& c, double lo, double hi) {
   double sum = 0.0;
   int n = 0;
@@ -59,14 +61,14 @@ void check_collapse_load(const std::string& name, double lo, double hi, double u
 
 TEST(Footing, PrandtlOnTrescaSoil) {
   // q_u = (2 + pi) c_u, c_u = 10 kPa.
-  check_collapse_load("prandtl_tresca", 0.025, 0.05, 1.0e4, 2.0 + M_PI, 0.05);
+  check_collapse_load("prandtl_tresca", 0.015, 0.03, 1.0e4, 2.0 + M_PI, 0.05);
 }
 
 TEST(Footing, VesicNqOnWeightlessMohrCoulombSoil) {
   // q_u = N_q q0, q0 = 10 kPa, N_q = tan^2(pi/4 + phi/2) exp(pi tan phi), phi = 28.1 deg.
   const double phi = 28.1 * M_PI / 180.0;
   const double nq = std::pow(std::tan(M_PI / 4 + phi / 2), 2) * std::exp(M_PI * std::tan(phi));
-  check_collapse_load("vesic_mohr_coulomb", 0.015, 0.04, 1.0e4, nq, 0.15);
+  check_collapse_load("vesic_mohr_coulomb", 0.015, 0.03, 1.0e4, nq, 0.15);
 }
 
 TEST(Footing, LargePenetrationWithGimpIsSmooth) {
