@@ -15,8 +15,6 @@ percentile, so a few extreme points at a footing edge do not wash out the rest).
 import os
 
 import numpy as np
-from matplotlib.ticker import MaxNLocator
-from matplotlib.tri import Triangulation
 
 from mpm_lig_post import cli, figures
 from mpm_lig_post.errors import InputError
@@ -65,6 +63,8 @@ def plane_points(positions, spacing, dimension, slice_spec):
 
 def triangulation(xy, spacing):
     """Delaunay triangulation of the points without triangles bridging gaps."""
+    from matplotlib.tri import Triangulation
+
     tri = Triangulation(xy[:, 0], xy[:, 1])
     corners = xy[tri.triangles]
     edges = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2).max(axis=1)
@@ -76,6 +76,8 @@ def triangulation(xy, spacing):
 
 
 def contour(fig, ax, tri, values, label, cmap, vmax=None):
+    from matplotlib.ticker import MaxNLocator
+
     vmax = vmax if vmax is not None else values.max()
     vmin = min(values.min(), 0.0)
     if vmax <= vmin:
@@ -126,7 +128,7 @@ def main():
         ax.set_ylabel(f"{names[1]} [m]")
         ax.set_title(f"{title}, step {step.step}, t = {step.time:.4g} s{where}")
     fig.tight_layout()
-    figures.save(fig, cli.picture_path(args))
+    figures.save(fig, cli.picture_path(args), args.dpi)
     fields.close()
 
 

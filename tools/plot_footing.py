@@ -115,7 +115,7 @@ def main():
     ax.legend(loc="lower right", frameon=False)
     ax.set_title(f"strip footing, B = {width:g} m: {os.path.basename(os.path.abspath(directory))}")
     fig.tight_layout()
-    figures.save(fig, cli.picture_path(args))
+    figures.save(fig, cli.picture_path(args), args.dpi)
 
 
 if __name__ == "__main__":

@@ -15,8 +15,6 @@ import os
 import re
 
 import numpy as np
-from matplotlib.collections import EllipseCollection, LineCollection
-from matplotlib.lines import Line2D
 
 from mpm_lig_post import cli, figures
 from mpm_lig_post.errors import InputError
@@ -79,6 +77,8 @@ class Snapshot:
 
 
 def draw_panel(ax, snap, plane, force_max, title):
+    from matplotlib.collections import EllipseCollection, LineCollection
+
     i, j = plane
     # 3D: far grains first so near ones cover them
     depth_axis = 3 - i - j
@@ -131,13 +131,15 @@ def main():
         draw_panel(ax, snap, plane, force_max,
                    f"({label}) increment {step}: {len(snap.force)} contacts, "
                    f"mean |f| = {mean:.3g} N")
+    from matplotlib.lines import Line2D
+
     handles = [Line2D([], [], color="k", lw=MAX_WIDTH * f) for f in (1.0, 0.5, 0.1)]
     labels = [f"|f| = {f * force_max:.3g} N" for f in (1.0, 0.5, 0.1)]
     handles.append(Line2D([], [], color="C3", lw=0.8, ls="--"))
     labels.append("periodic cell")
     fig.legend(handles, labels, loc="lower center", ncol=4, frameon=False)
     fig.tight_layout(rect=(0, 0.07, 1, 1))
-    figures.save(fig, cli.picture_path(args))
+    figures.save(fig, cli.picture_path(args), args.dpi)
 
 
 if __name__ == "__main__":

@@ -74,10 +74,10 @@ def print_table(rows):
               f"{g / g1:6.3f} {pe / 1e3:11.4g} {ratio:8.3f}")
 
 
-def draw(gamma, tau, p, cycle, title, png):
+def draw(gamma, tau, p, cycle, title, png, dpi):
     fig, (loops, path) = figures.subplots(1, 2, figsize=(10.5, 4.3))
     cycles = np.unique(cycle)
-    colours = figures.plt.cm.viridis(np.linspace(0.0, 0.9, len(cycles)))
+    colours = figures.pyplot().cm.viridis(np.linspace(0.0, 0.9, len(cycles)))
     for c, colour in zip(cycles, colours):
         idx = np.flatnonzero(cycle == c)
         if idx[0] > 0:
@@ -99,12 +99,12 @@ def draw(gamma, tau, p, cycle, title, png):
     loops.axvline(0, color="0.6", lw=0.6, zorder=0)
     path.legend(loc="best", frameon=False, ncol=2 if len(cycles) > 5 else 1)
     if len(cycles) > 12:
-        sm = figures.plt.cm.ScalarMappable(cmap="viridis", norm=figures.plt.Normalize(
+        sm = figures.pyplot().cm.ScalarMappable(cmap="viridis", norm=figures.pyplot().Normalize(
             cycles[0], cycles[-1] / 0.9))
         fig.colorbar(sm, ax=loops, label="cycle")
     fig.suptitle(title)
     fig.tight_layout()
-    figures.save(fig, png)
+    figures.save(fig, png, dpi)
 
 
 def main():
@@ -112,13 +112,13 @@ def main():
     directory = cli.output_dir(args)
     path = os.path.join(directory, "history.csv")
     gamma, tau, p, cycle = shear_series(read_history(path), path)
+    if len(gamma) < 2:
+        raise InputError(f"{path}: needs at least two rows")
     cycle = count_cycles(gamma) if cycle is None else np.rint(cycle).astype(int)
     rows = cycle_table(gamma, tau, p, cycle)
     print_table(rows)
-    if len(gamma) < 2:
-        raise InputError(f"{path}: needs at least two rows")
     draw(gamma, tau, p, cycle, f"cyclic simple shear: {os.path.basename(os.path.abspath(directory))}",
-         cli.picture_path(args))
+         cli.picture_path(args), args.dpi)
 
 
 if __name__ == "__main__":

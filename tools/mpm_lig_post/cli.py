@@ -12,6 +12,8 @@ def parser(description, default_png):
     p.add_argument("output_dir", metavar="OUTPUT_DIR", help="the run's output directory")
     p.add_argument("-o", "--output", metavar="PNG",
                    help=f"picture to write (default OUTPUT_DIR/{default_png})")
+    p.add_argument("--dpi", type=int, default=200,
+                   help="picture resolution in dots per inch (default 200, print quality)")
     p.set_defaults(default_png=default_png)
     return p
 

@@ -1,10 +1,6 @@
-"""Matplotlib set-up (Agg, publication defaults) and saving."""
+"""Matplotlib set-up (Agg, publication defaults) and saving. pyplot is imported on first
+use, so a tool that stops on bad input does not pay for it."""
 import os
-
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 
 STYLE = {
     "font.size": 11,
@@ -25,16 +21,26 @@ STYLE = {
 }
 
 
+def pyplot():
+    """matplotlib.pyplot on the Agg backend, under the project style."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    plt.rcParams.update(STYLE)
+    return plt
+
+
 def subplots(*args, **kwargs):
     """plt.subplots under the project style."""
-    plt.rcParams.update(STYLE)
-    return plt.subplots(*args, **kwargs)
+    return pyplot().subplots(*args, **kwargs)
 
 
-def save(fig, path):
+def save(fig, path, dpi=None):
     """Write the figure (creating the folder) and report where."""
     folder = os.path.dirname(os.path.abspath(path))
     os.makedirs(folder, exist_ok=True)
-    fig.savefig(path)
-    plt.close(fig)
+    fig.savefig(path, dpi=dpi or STYLE["savefig.dpi"])
+    pyplot().close(fig)
     print(f"wrote {path}")

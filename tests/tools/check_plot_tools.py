@@ -1,0 +1,308 @@
+"""Checks of the plotting tools on synthetic outputs with known answers.
+
+usage: check_plot_tools.py CASE WORK_DIR [MPM_LIG]   (CASE: a function named in CASES;\nreal_footing also needs the mpm_lig executable)
+
+Each case writes a run directory in the writers' formats (synthetic.py), runs the tool as a
+user would and checks its exit code, its printed numbers against the closed-form values the
+data were built from, and that the picture is a real plot (size, ink, colours).
+"""
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOLS = os.path.join(HERE, "..", "..", "tools")
+sys.path.insert(0, HERE)
+import synthetic  # noqa: E402
+
+
+def run_tool(tool, *args, dpi=100):
+    """Run a tool; pictures at a screen resolution by default to keep the tests quick."""
+    extra = ["--dpi", str(dpi)] if dpi else []
+    result = subprocess.run([sys.executable, os.path.join(TOOLS, tool), *map(str, args), *extra],
+                            capture_output=True, text=True)
+    sys.stdout.write(result.stdout)
+    sys.stderr.write(result.stderr)
+    return result
+
+
+def expect(condition, message):
+    if not condition:
+        raise SystemExit(f"FAILED: {message}")
+
+
+def check_picture(path, min_colours=20):
+    """The PNG exists, is large, has ink and more than a few colours."""
+    import matplotlib.image as mpimg
+    expect(os.path.isfile(path), f"{path} not written")
+    image = mpimg.imread(path)[:, :, :3]
+    expect(image.shape[0] >= 300 and image.shape[1] >= 500, f"{path}: small {image.shape}")
+    ink = np.mean(image.min(axis=2) < 0.9)
+    colours = len(np.unique((image * 255).astype(np.uint8).reshape(-1, 3), axis=0))
+    print(f"{path}: {image.shape[1]}x{image.shape[0]}, ink {100 * ink:.1f} %, {colours} colours")
+    expect(ink > 0.03, f"{path}: nearly blank ({100 * ink:.2f} % ink)")
+    expect(colours >= min_colours, f"{path}: only {colours} colours")
+
+
+def expect_bad_input(result, *words):
+    expect(result.returncode == 2, f"exit code {result.returncode}, expected 2")
+    for w in words:
+        expect(w in result.stderr, f"'{w}' not named in the message: {result.stderr!r}")
+
+
+def numbers_after(text, label):
+    return [float(v) for v in re.findall(re.escape(label) + r"\s*=?\s*([-+0-9.eE]+)", text)]
+
+
+# ---- cyclic simple shear ------------------------------------------------------------------
+GAMMA_A, P0, CYCLES = 0.01, 100e3, 4
+MODULI = [8e6 * 0.7 ** k for k in range(CYCLES)]  # secant modulus of cycle k + 1
+P_RATIO = 0.6  # mean stress falls by this factor per cycle
+
+
+def shear_path(per_quarter=10):
+    """gamma 0 -> +a -> -a -> 0 per cycle; tau on an ellipse loop around G_k gamma (so
+    tau(+-a) = +-G_k a exactly); p = P0 * P_RATIO^(cycles travelled)."""
+    gamma, tau, p, cycle = [0.0], [0.0], [P0], [1]
+    steps = 4 * per_quarter
+    for k in range(CYCLES):
+        for i in range(1, steps + 1):
+            phase = i / steps  # fraction of this cycle
+            g = GAMMA_A * math.sin(2 * math.pi * phase)
+            # zero where gamma = +-a (cos = 0), so there tau = +-G_k a
+            loop = 0.3 * MODULI[k] * GAMMA_A * math.cos(2 * math.pi * phase)
+            loop = loop if abs(math.cos(2 * math.pi * phase)) > 1e-12 else 0.0
+            gamma.append(g)
+            tau.append(MODULI[k] * g - loop)
+            p.append(P0 * P_RATIO ** (k + phase))
+            cycle.append(k + 1)
+    return [np.array(v) for v in (gamma, tau, p, cycle)]
+
+
+def check_shear_table(stdout):
+    rows = [line.split() for line in stdout.splitlines() if re.match(r"\s*\d+\s", line)]
+    expect(len(rows) == CYCLES, f"{len(rows)} cycle rows, expected {CYCLES}")
+    for k, row in enumerate(rows):
+        modulus, ratio = float(row[3]) * 1e6, float(row[6])
+        expect(abs(modulus / MODULI[k] - 1) < 2e-3, f"cycle {k + 1}: G_sec {modulus} vs {MODULI[k]}")
+        expect(abs(ratio - P_RATIO ** (k + 1)) < 2e-3, f"cycle {k + 1}: p ratio {ratio}")
+        expect(abs(float(row[1]) - 100 * GAMMA_A) < 1e-6, f"cycle {k + 1}: amplitude {row[1]}")
+
+
+def shear_element(work):
+    """Element-test layout (gamma_xy, s_xy, p; no cycle column: cycles counted from strain)."""
+    gamma, tau, p, _ = shear_path()
+    n = len(gamma)
+    columns = ["increment", "time", "e_xy", "s_xy", "p", "q", "gamma_xy"]
+    rows = np.column_stack([np.arange(n), np.arange(n) * 1e-3, gamma / 2, tau, p, np.abs(tau), gamma])
+    synthetic.write_history(work, columns, rows)
+    result = run_tool("plot_shear.py", work, "-o", os.path.join(work, "shear.png"))
+    expect(result.returncode == 0, "plot_shear failed")
+    check_shear_table(result.stdout)
+    check_picture(os.path.join(work, "shear.png"))
+
+
+def shear_mpm(work):
+    """MPM layout (cycle, shear_strain, shear_stress, mean_stress), mean stress tension positive."""
+    gamma, tau, p, cycle = shear_path()
+    synthetic.write_history(work, ["step", "time", "cycle", "shear_strain", "shear_stress", "mean_stress"],
+                            np.column_stack([np.arange(len(gamma)), np.arange(len(gamma)) * 1e-3,
+                                             cycle, gamma, tau, -p]))
+    result = run_tool("plot_shear.py", work)
+    expect(result.returncode == 0, "plot_shear failed")
+    check_shear_table(result.stdout)
+    check_picture(os.path.join(work, "shear.png"))
+
+
+def shear_bad(work):
+    synthetic.write_history(work, ["cycle", "shear_strain", "mean_stress"], [[1, 0, 1e5], [1, 0.01, 1e5]])
+    expect_bad_input(run_tool("plot_shear.py", work), "shear_stress", "history.csv")
+    expect_bad_input(run_tool("plot_shear.py", os.path.join(work, "nowhere")), "nowhere")
+
+
+# ---- force chains -------------------------------------------------------------------------
+def packing(seed, compress):
+    """A square lattice of discs, compressed vertically by `compress`, with contacts to the
+    right and upper neighbours; vertical forces grow with `compress`."""
+    rng = np.random.default_rng(seed)
+    n, d = 10, 0.01
+    centres, radii, contacts, forces = [], [], [], []
+    for j in range(n):
+        for i in range(n):
+            centres.append([(i + 0.5) * d, (j + 0.5) * d * (1 - compress), 0.0])
+            radii.append(0.5 * d * rng.uniform(0.8, 1.0))
+    for j in range(n):
+        for i in range(n):
+            k = j * n + i
+            if i + 1 < n:
+                contacts.append((k, k + 1))
+                forces.append(rng.uniform(1, 3))
+            if j + 1 < n:
+                contacts.append((k, k + n))
+                forces.append(rng.uniform(1, 3) * (1 + 20 * compress) * (1 + (i % 3 == 0) * 2))
+    box = [[n * d, 0, 0], [0, n * d * (1 - compress), 0], [0, 0, d]]
+    return centres, radii, contacts, forces, box
+
+
+def force_chains(work):
+    snaps = os.path.join(work, "snapshots")
+    os.makedirs(snaps, exist_ok=True)
+    for step, compress in ((0, 0.0), (300, 0.1)):
+        synthetic.write_snapshot(os.path.join(snaps, "rve_%06d" % step), *packing(step, compress))
+    sys.path.insert(0, TOOLS)
+    from mpm_lig_post.vtk_legacy import read_polydata
+    contacts = read_polydata(os.path.join(snaps, "rve_000300_contacts.vtk"))
+    expect(contacts.lines().shape == (180, 2, 3), f"contact lines {contacts.lines().shape}")
+    expected = packing(300, 0.1)[3]
+    expect(np.allclose(contacts.field("force", "cell"), expected, rtol=1e-8), "forces read back")
+    grains = read_polydata(os.path.join(snaps, "rve_000300_grains.vtk"))
+    expect(grains.points.shape == (100, 3) and grains.field("velocity").shape == (100, 3), "grains")
+    result = run_tool("plot_force_chains.py", work, "--steps", 0, 300)
+    expect(result.returncode == 0, "plot_force_chains failed")
+    check_picture(os.path.join(work, "force_chains.png"), min_colours=8)
+
+
+def force_chains_bad(work):
+    snaps = os.path.join(work, "snapshots")
+    os.makedirs(snaps, exist_ok=True)
+    synthetic.write_snapshot(os.path.join(snaps, "rve_000000"), *packing(0, 0.0))
+    expect_bad_input(run_tool("plot_force_chains.py", work, "--steps", 0, 7), "increment 7")
+    # a contacts file without its force data
+    path = os.path.join(snaps, "rve_000000_contacts.vtk")
+    text = open(path).read()
+    open(path, "w").write(text[: text.index("CELL_DATA")])
+    expect_bad_input(run_tool("plot_force_chains.py", work, "--steps", 0, 0), "'force'", path)
+
+
+# ---- footing ------------------------------------------------------------------------------
+PHI, SURCHARGE, WIDTH = 28.1, 10e3, 2.0
+
+
+def footing_history(work, plateau):
+    s = np.linspace(0, 0.3, 301)  # settlement [m]
+    q = plateau * SURCHARGE * (1 - np.exp(-s / 0.02)) * (1 + 0.05 * np.exp(-((s - 0.1) / 0.02) ** 2))
+    synthetic.write_history(work, ["step", "time", "kinetic_energy", "settlement", "load", "q"],
+                            np.column_stack([np.arange(len(s)), s, 0 * s, s, q * WIDTH / 2, q]))
+    return q.max()
+
+
+def footing(work):
+    nq = math.tan(math.pi / 4 + math.radians(PHI) / 2) ** 2 * math.exp(math.pi * math.tan(math.radians(PHI)))
+    peak = footing_history(work, nq)
+    case = os.path.join(work, "case.json")
+    open(case, "w").write('{"rigid_bodies": [{"type": "footing", "width": [%g]}], '
+                          '"boundary_conditions": [{"type": "traction", "traction": [0, %g]}]}'
+                          % (WIDTH, -SURCHARGE))
+    result = run_tool("plot_footing.py", work, "--case", case, "--phi", PHI)
+    expect(result.returncode == 0, "plot_footing failed")
+    expect(abs(numbers_after(result.stdout, "N_q(28.1 deg) =")[0] - 14.88) < 0.01, "N_q(28.1)")
+    expect(abs(numbers_after(result.stdout, "peak / N_q =")[0] - peak / SURCHARGE / nq) < 2e-3, "peak / N_q")
+    expect(abs(numbers_after(result.stdout, "B =")[0] - WIDTH) < 1e-12, "B from the case")
+    check_picture(os.path.join(work, "footing.png"), min_colours=8)
+
+
+def footing_bad(work):
+    synthetic.write_history(work, ["step", "time", "settlement", "load"], [[0, 0, 0, 0], [1, 1, 0.1, 5]])
+    expect_bad_input(run_tool("plot_footing.py", work, "--width", 1), "'q'", "history.csv")
+    footing_history(work, 10)
+    expect_bad_input(run_tool("plot_footing.py", work), "--width")
+    expect_bad_input(run_tool("plot_footing.py", work, "--width", 1, "--phi", 30), "--surcharge")
+
+
+# ---- fields -------------------------------------------------------------------------------
+def lattice(dimension, n=(24, 12, 6), h=0.1):
+    axes = [(np.arange(k) + 0.5) * h for k in n[:dimension]]
+    grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, dimension)
+    positions = np.zeros((len(grid), 3))
+    positions[:, :dimension] = grid
+    return positions, np.full(len(grid), h ** dimension)
+
+
+def field_step(positions, volume, amplitude):
+    """A shear band along x = y (eps_q peak = amplitude) and a displacement bowl."""
+    x, y = positions[:, 0], positions[:, 1]
+    eq = amplitude * np.exp(-(((x - y) / 0.15) ** 2))
+    u = np.zeros_like(positions)
+    u[:, 1] = -0.05 * amplitude * np.exp(-((x / 0.8) ** 2))
+    return {"positions": positions + u, "displacement": u, "velocity": 0 * u,
+            "stress": np.zeros((len(x), 6)), "strain": np.zeros((len(x), 6)),
+            "deviatoric_strain": eq, "volume": volume, "material": np.zeros(len(x), dtype=np.int32)}
+
+
+def fields_2d(work):
+    positions, volume = lattice(2)
+    synthetic.write_fields(work, [(0, 0.0, field_step(positions, volume, 0.0)),
+                                  (100, 0.5, field_step(positions, volume, 0.2)),
+                                  (200, 1.0, field_step(positions, volume, 0.4))])
+    result = run_tool("plot_fields.py", work, "--step", 100)
+    expect(result.returncode == 0, "plot_fields failed")
+    expect("step 100" in result.stdout, "--step 100 chosen")
+    eq_max = numbers_after(result.stdout, "eps_q max")[0]
+    expected = field_step(positions, volume, 0.2)["deviatoric_strain"].max()
+    expect(abs(eq_max - expected) < 1e-9, f"eps_q max {eq_max} vs {expected}")
+    check_picture(os.path.join(work, "fields.png"))
+
+
+def fields_3d(work):
+    positions, volume = lattice(3)
+    synthetic.write_fields(work, [(50, 0.2, field_step(positions, volume, 0.3))])
+    result = run_tool("plot_fields.py", work, "--slice", "z=0.25")
+    expect(result.returncode == 0, "plot_fields 3D failed")
+    expect(re.search(r"\b288 points", result.stdout) is not None, "a slice holds one layer (24 x 12)")
+    check_picture(os.path.join(work, "fields.png"))
+
+
+def fields_bad(work):
+    positions, volume = lattice(2)
+    data = field_step(positions, volume, 0.1)
+    del data["deviatoric_strain"]
+    synthetic.write_fields(work, [(10, 0.1, data)])
+    expect_bad_input(run_tool("plot_fields.py", work), "deviatoric_strain", "results.h5")
+    expect_bad_input(run_tool("plot_fields.py", work, "--step", 11), "no output step 11")
+
+
+# ---- a real solver run ------------------------------------------------------------------
+def real_footing(work, mpm_lig):
+    """footing_tiny.json through mpm_lig, then plot_footing and plot_fields on its output:
+    the readers agree with the writers, and the numbers with summary.json / results.h5."""
+    import h5py
+    import json
+    out = os.path.join(work, "run")
+    run = subprocess.run([mpm_lig, os.path.join(HERE, "footing_tiny.json"), "--output", out],
+                         capture_output=True, text=True)
+    expect(run.returncode == 0, f"mpm_lig failed: {run.stderr}")
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    result = run_tool("plot_footing.py", out, "--case", os.path.join(HERE, "footing_tiny.json"),
+                      "--prandtl")
+    expect(result.returncode == 0, "plot_footing failed")
+    expect(abs(numbers_after(result.stdout, "B =")[0] - 0.4) < 1e-12, "B from the case")
+    peak = numbers_after(result.stdout, "peak q =")[0]
+    # history every 5 steps: its peak is at most the exact one, and close to it
+    expect(0.97 * summary["peak_q"] <= peak <= summary["peak_q"] * (1 + 1e-9),
+           f"history peak {peak} vs summary peak_q {summary['peak_q']}")
+    check_picture(os.path.join(out, "footing.png"), min_colours=8)
+    result = run_tool("plot_fields.py", out)
+    expect(result.returncode == 0, "plot_fields failed")
+    expect(f"step {summary['mpm_steps']}," in result.stdout, "default is the last step")
+    with h5py.File(os.path.join(out, "results.h5"), "r") as f:
+        eq = f["step_%06d/deviatoric_strain" % summary["mpm_steps"]][()]
+    expect(abs(numbers_after(result.stdout, "eps_q max")[0] / eq.max() - 1) < 1e-3, "eps_q max")
+    check_picture(os.path.join(out, "fields.png"))
+
+
+CASES = {f.__name__: f for f in (real_footing, shear_element, shear_mpm, shear_bad, force_chains, force_chains_bad,
+                                 footing, footing_bad, fields_2d, fields_3d, fields_bad)}
+
+if __name__ == "__main__":
+    if len(sys.argv) not in (3, 4) or sys.argv[1] not in CASES:
+        raise SystemExit(f"usage: check_plot_tools.py {{{'|'.join(CASES)}}} WORK_DIR [MPM_LIG]")
+    work = os.path.join(sys.argv[2], sys.argv[1])
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    CASES[sys.argv[1]](work, *sys.argv[3:])
+    print("passed")
