@@ -8,7 +8,8 @@ Reads OUTPUT_DIR/history.csv (settlement [m], load, q [Pa] of the first footing)
 summary.json when present (its peak_q is cross-checked). The footing width B comes from
 --width or from --case (rigid_bodies[0].width[0], the full width also for a half model). q is
 divided by the surcharge q_s (--surcharge, or the case's surface traction) or by the undrained
-strength c_u (--cu, or the case's tresca material); the horizontal lines are Vesic's
+strength c_u (--cu, or the case's tresca material; with --prandtl or without a
+surcharge); the horizontal lines are Vesic's
 N_q = tan^2(pi/4 + phi/2) exp(pi tan phi) for --phi DEG (over q_s) and Prandtl's 2 + pi
 (--prandtl, over c_u). Without a normaliser q is plotted in kPa.
 """
@@ -68,9 +69,10 @@ def main():
         raise InputError(f"footing width must be > 0, got {width}")
     if args.surcharge is not None or args.cu is not None:
         surcharge, cu = args.surcharge, args.cu
-    elif surcharge is not None and cu is not None:
-        cu = None if args.phi is not None else cu
-        surcharge = None if cu is not None else surcharge
+    elif args.prandtl or surcharge is None:
+        surcharge = None  # from the case: normalise by c_u when asked for 2 + pi or no q_s
+    else:
+        cu = None
     if args.phi is not None and surcharge is None:
         raise InputError("--phi needs the surcharge: give --surcharge q_s or a --case "
                          "with a traction boundary condition")
