@@ -16,12 +16,16 @@ RigidFooting<D>::RigidFooting(const Footing& spec, const Grid<D>& grid) : spec_(
   }
   for (long id = 0; id < static_cast<long>(grid.node_count()); ++id) {
     const Vec x = grid.node_position(id);
-    // Share of the node's tributary length [x - h/2, x + h/2] under the footing, per axis.
+    // Share of the node's tributary length [x - h/2, x + h/2] (clipped to the mesh) that
+    // lies under the footing, per axis.
     double share = 1.0;
     for (int d = 0; d < D - 1; ++d) {
-      const double h = grid.cell()[d];
-      const double outside = std::abs(x[d] - spec.center[d]) - 0.5 * spec.width[d];
-      share *= std::clamp(0.5 - outside / h, 0.0, 1.0);
+      const double h = grid.cell()[d], end = grid.origin()[d] + grid.size()[d];
+      const double lo = std::max(x[d] - 0.5 * h, grid.origin()[d]);
+      const double hi = std::min(x[d] + 0.5 * h, end);
+      const double under = std::min(hi, spec.center[d] + 0.5 * spec.width[d]) -
+                           std::max(lo, spec.center[d] - 0.5 * spec.width[d]);
+      share *= std::clamp(under / (hi - lo), 0.0, 1.0);
     }
     if (share > tol) {
       footprint_.push_back(id);

@@ -118,5 +118,50 @@ TEST(Footing, LargePenetrationWithGimpIsSmooth) {
   EXPECT_GT(linear_spike, 0.10);
 }
 
+TEST(Footing, ThreeDimensionalSlabMatchesPlaneStrain) {
+  // The strip footing on Tresca soil (coarse, h = B/10, to d/B = 0.03) in 2D, and in 3D as a
+  // one-cell slab with rollers on its faces y- and y+: the same plane-strain problem, so the
+  // same load curve (3D shape functions, constraints and footing cross-checked).
+  auto coarse = [](nlohmann::json& j) {
+    j["output"]["fields"] = false;
+    j["analysis"]["end"]["time"] = 0.3;
+    j["mesh"] = {{"origin", {0, 0}}, {"size", {3.0, 2.2}}, {"cells", {30, 22}}};
+    j["bodies"][0]["box"] = {{"min", {0, 0}}, {"max", {3.0, 2.0}}};
+    j["rigid_bodies"][0]["base"] = 2.0;
+    // F-bar differs on purpose: in 3D it rescales the out-of-plane stretch too.
+    j["analysis"]["volumetric_smoothing"] = false;
+  };
+  auto slab = [&](nlohmann::json& j) {
+    coarse(j);
+    j["dimension"] = 3;
+    j["mesh"] = {{"origin", {0, 0, 0}}, {"size", {3.0, 0.1, 2.2}}, {"cells", {30, 1, 22}}};
+    j["bodies"][0]["box"] = {{"min", {0, 0, 0}}, {"max", {3.0, 0.1, 2.0}}};
+    j["boundary_conditions"] = {
+        {{"type", "roller"}, {"nodes", {{"face", "x-"}}}, {"direction", "x"}},
+        {{"type", "roller"}, {"nodes", {{"face", "x+"}}}, {"direction", "x"}},
+        {{"type", "roller"}, {"nodes", {{"face", "y-"}}}, {"direction", "y"}},
+        {{"type", "roller"}, {"nodes", {{"face", "y+"}}}, {"direction", "y"}},
+        {{"type", "fixed"}, {"nodes", {{"face", "z-"}}}}};
+    j["rigid_bodies"][0]["center"] = {0.0, 0.05};
+    j["rigid_bodies"][0]["width"] = {1.0, 0.1};
+  };
+  std::vector<double> q2, q3;
+  MpmCase c2 = testing::load_case("prandtl_tresca", coarse);
+  run_case<2>(c2, "", [&](const Solver<2>& s) {
+    q2.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
+  });
+  MpmCase c3 = testing::load_case("prandtl_tresca", slab);
+  run_case<3>(c3, "", [&](const Solver<3>& s) {
+    q3.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
+  });
+  ASSERT_EQ(q2.size(), q3.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < q2.size(); ++k)
+    worst = std::max(worst, std::abs(q3[k] - q2[k]));
+  std::printf("3D slab vs 2D: max |q3 - q2| = %.3e c_u, q2(end) = %.4f c_u\n", worst / 1.0e4,
+              q2.back() / 1.0e4);
+  EXPECT_LT(worst, 1e-6 * q2.back());
+}
+
 }  // namespace
 }  // namespace mpm_lig::mpm
