@@ -38,12 +38,14 @@ std::vector<double> read_vector(const CaseNode& node, const std::string& key, st
   return v;
 }
 
-Box read_box(const CaseNode& node, const std::string& key, int dimension) {
+//! A box; `flat` allows min = max along an axis (a line or plane of nodes).
+Box read_box(const CaseNode& node, const std::string& key, int dimension, bool flat = false) {
   const CaseNode b = node.child(key);
   Box box{read_vector(b, "min", dimension), read_vector(b, "max", dimension)};
   for (int d = 0; d < dimension; ++d) {
-    if (!(box.min[d] < box.max[d]))
-      b.fail("max", "must be greater than min along " + kAxes[d]);
+    if (box.min[d] > box.max[d] || (!flat && box.min[d] == box.max[d]))
+      b.fail("max", std::string("must be greater than ") + (flat ? "or equal to " : "") +
+                        "min along " + kAxes[d]);
   }
   return box;
 }
@@ -186,7 +188,7 @@ NodeSelector read_nodes(const CaseNode& node, const MpmCase& c) {
     n.fail("give exactly one of \"box\" or \"face\"");
   NodeSelector s;
   if (n.has("box")) {
-    s.box = read_box(n, "box", c.dimension);
+    s.box = read_box(n, "box", c.dimension, true);
     if (!box_holds_a_node(s.box, c))
       n.fail("box", "contains no grid node");
     return s;
