@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -84,6 +85,36 @@ nlohmann::json state_json(const rve::Observables& o, int dimension) {
           {"coordination_number", o.coordination_number},
           {"kinetic_ratio", o.kinetic_ratio()}};
 }
+
+//! How well a drained test held its lateral stress, over all increments.
+class LateralControl {
+ public:
+  LateralControl(double confining, int dimension)
+      : confining_(confining), lateral_axes_(dimension - 1) {}
+  void add(const Mat3& stress, int corrections) {
+    for (int i = 0; i < lateral_axes_; ++i) {
+      const double error = std::abs(-stress(i, i) - confining_) / confining_;
+      max_error_ = std::max(max_error_, error);
+      sum_squares_ += error * error;
+      ++samples_;
+    }
+    corrections_ += corrections;
+    ++increments_;
+  }
+  nlohmann::json json(double tolerance) const {
+    return {{"tolerance", tolerance},
+            {"max_relative_error", max_error_},
+            {"rms_relative_error", samples_ ? std::sqrt(sum_squares_ / samples_) : 0.0},
+            {"corrections_per_increment",
+             increments_ ? double(corrections_) / double(increments_) : 0.0}};
+  }
+
+ private:
+  double confining_;
+  int lateral_axes_;
+  double max_error_ = 0.0, sum_squares_ = 0.0;
+  long samples_ = 0, corrections_ = 0, increments_ = 0;
+};
 
 std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohmann::json& summary) {
   if (!rve_.restart_file.empty()) {
@@ -170,12 +201,29 @@ void ElementTest::run(const RunContext& context) {
   double peak_friction = mobilised_friction_deg(now.stress, rve_.dimension);
   nlohmann::json peak = state_json(now, rve_.dimension);
   const int n = path->increments();
+  LateralControl lateral(confining, rve_.dimension);
   for (int k = 0; k < n; ++k) {
     const Mat3 dF = path->increment(k, now.stress);
-    const int substeps = rve->deform(dF);
+    int substeps = rve->deform(dF);
     F = dF * F;
+    // Stress-controlled directions: correct within the increment until on target. Each
+    // correction takes the sub-steps the RVE's rule gives for its strain (the same inertial
+    // number as the increment): measured on the quickstart case, 1.8 corrections per increment
+    // cost 6 % more DEM steps; as many sub-steps as the increment itself needed 2.6
+    // corrections and 55 % more.
+    Mat3 stress = rve->stress();
+    int corrections = 0;
+    for (std::optional<Mat3> c;
+         corrections < test_.max_corrections && (c = path->correction(stress)).has_value();
+         ++corrections) {
+      substeps += rve->deform(*c);
+      F = *c * F;
+      stress = rve->stress();
+    }
     time += substeps * rve_.time_step;
     now = rve->observe();
+    if (test_.kind == TestKind::kDrainedCompression)
+      lateral.add(now.stress, corrections);
     rve->check_health(now);
     const bool last = k + 1 == n;
     if (writer && ((k + 1) % test_.output_every == 0 || last))
@@ -190,6 +238,8 @@ void ElementTest::run(const RunContext& context) {
     }
   }
   summary["increments"] = n;
+  if (test_.kind == TestKind::kDrainedCompression)
+    summary["lateral_stress"] = lateral.json(test_.confining_tolerance);
   summary["final"] = state_json(now, rve_.dimension);
   summary["peak"] = peak;
   summary["peak_mobilised_friction_deg"] = peak_friction;
@@ -233,6 +283,10 @@ ElementTestSpec parse_element_test(const CaseNode& a, const rve::RveSpec& rve) {
     t.kind = TestKind::kDrainedCompression;
     t.strain = a.in_range("axial_strain", 1e-7, 0.7);
     t.confining_pressure = a.positive_or("confining_pressure", 0.0);
+    t.confining_tolerance = a.in_range_or("confining_tolerance", 1e-4, 0.1, 0.005);
+    t.max_corrections = a.get_or<int>("max_corrections", 20);
+    if (t.max_corrections < 0)
+      a.fail("max_corrections", "must be >= 0");
   }
   if (t.strain_increment > std::max(t.strain, t.shear_amplitude))
     a.fail("strain_increment", "is larger than the total strain of the test");

@@ -14,11 +14,13 @@ enum class TestKind { kIsotropicCompression, kDrainedCompression, kUndrainedCycl
 //! The "analysis" node of an element test, validated.
 struct ElementTestSpec {
   TestKind kind = TestKind::kIsotropicCompression;
-  std::string name;                 //!< as written in the case ("drained_triaxial", ...)
-  double strain_increment = 1e-4;   //!< per increment (axial, per-axis or shear strain)
-  double strain = 0.0;              //!< total: per-axis (isotropic) or axial (drained) strain
-  double confining_pressure = 0.0;  //!< drained: lateral stress [Pa]; 0 = preparation pressure
-  double shear_amplitude = 0.0;     //!< cyclic: engineering shear strain amplitude γ_a
+  std::string name;                    //!< as written in the case ("drained_triaxial", ...)
+  double strain_increment = 1e-4;      //!< per increment (axial, per-axis or shear strain)
+  double strain = 0.0;                 //!< total: per-axis (isotropic) or axial (drained) strain
+  double confining_pressure = 0.0;     //!< drained: lateral stress [Pa]; 0 = preparation pressure
+  double confining_tolerance = 0.005;  //!< drained: relative tolerance of the lateral stress
+  int max_corrections = 20;            //!< drained: lateral corrections per increment at most
+  double shear_amplitude = 0.0;        //!< cyclic: engineering shear strain amplitude γ_a
   int cycles = 0;
   int output_every = 1;      //!< history row every N increments
   int snapshot_every = 0;    //!< VTK snapshot every N increments (0: first and last only)

@@ -1,5 +1,6 @@
 #include "element/strain_path.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mpm_lig::element {
@@ -28,39 +29,97 @@ class IsotropicPath : public StrainPath {
   int dimension_;
 };
 
-//! Axial compression (y in 2D, z in 3D) at constant lateral stress: each lateral direction
-//! gets the strain that cancels its stress error, with a gain below the lateral stiffness.
+//! Axial compression (y in 2D, z in 3D) at constant lateral stress. Each increment applies the
+//! axial step with a predicted lateral strain; corrections within the increment then change
+//! only the lateral lengths until every lateral stress is within the tolerance. The prediction
+//! learns from the error each increment's own step left before its corrections (integral
+//! action: the steady dilatancy, and the lower stress read while the packing is being sheared
+//! than after it rested in a correction). The lateral stiffness is re-estimated from the
+//! response to each correction (axial length fixed: the change of lateral stress is the lateral
+//! response alone), separately for widening (unloading towards failure: soft) and narrowing
+//! (reloading: stiff, measured up to 4 times the widening stiffness near the peak).
 class DrainedPath : public StrainPath {
  public:
   DrainedPath(const ElementTestSpec& t, int dimension, double confining, double stiffness)
       : n_(count(t.strain, t.strain_increment)),
         step_(t.strain / n_),
-        dimension_(dimension),
+        lateral_axes_(dimension - 1),
         confining_(confining),
-        stiffness_(stiffness) {}
+        tolerance_(t.confining_tolerance * confining),
+        probe_stiffness_(stiffness),
+        widening_(stiffness),
+        narrowing_(stiffness) {}
   int increments() const override { return n_; }
-  Mat3 increment(int, const Mat3& stress) override {
+
+  Mat3 increment(int k, const Mat3& stress) override {
     Mat3 dF = Mat3::Identity();
-    const int axial = dimension_ - 1;
-    dF(axial, axial) = std::exp(-step_);
-    for (int i = 0; i < axial; ++i) {
-      // Compression positive lateral stress above the target: let the cell expand.
-      const double excess = -stress(i, i) - confining_;
-      // Proportional-integral: the integral removes the lag behind the steady dilatancy.
-      integral_[i] += excess;
-      dF(i, i) = std::exp((excess + kIntegralGain * integral_[i]) / stiffness_);
+    dF(lateral_axes_, lateral_axes_) = std::exp(-step_);
+    for (int i = 0; i < lateral_axes_; ++i) {
+      if (k > 0)
+        trend_[i] += kTrendGain * after_step_[i] / stiffness(after_step_[i]);
+      dF(i, i) = std::exp(trend_[i] + excess(stress, i) / stiffness(excess(stress, i)));
     }
+    last_correction_ = false;
+    return dF;
+  }
+
+  std::optional<Mat3> correction(const Mat3& stress) override {
+    if (last_correction_)
+      update_stiffness(stress);
+    else
+      for (int i = 0; i < lateral_axes_; ++i)
+        after_step_[i] = excess(stress, i);
+    double worst = 0.0;
+    for (int i = 0; i < lateral_axes_; ++i)
+      worst = std::max(worst, std::abs(excess(stress, i)));
+    if (worst <= tolerance_)
+      return std::nullopt;
+    Mat3 dF = Mat3::Identity();
+    for (int i = 0; i < lateral_axes_; ++i) {
+      applied_[i] = excess(stress, i) / stiffness(excess(stress, i));
+      before_[i] = -stress(i, i);
+      dF(i, i) = std::exp(applied_[i]);
+    }
+    last_correction_ = true;
     return dF;
   }
 
  private:
+  //! Compression-positive lateral stress above the target (> 0: the cell must widen).
+  double excess(const Mat3& stress, int i) const { return -stress(i, i) - confining_; }
+
+  //! The stiffness estimate for a lateral strain of the sign of `widen` (> 0: widening).
+  double& stiffness(double widen) { return widen > 0.0 ? widening_ : narrowing_; }
+
+  //! Secant stiffness of the last correction (-Δσ'/Δε, least squares over the lateral axes),
+  //! averaged geometrically with the previous estimate of its direction and kept within
+  //! [1/50, 4] times the probe's, so that the noise of a small packing cannot run it away.
+  void update_stiffness(const Mat3& stress) {
+    double num = 0.0, den = 0.0, sum = 0.0;
+    for (int i = 0; i < lateral_axes_; ++i) {
+      num += (before_[i] + stress(i, i)) * applied_[i];  // -(Δσ'_i) Δε_i with σ' = -σ
+      den += applied_[i] * applied_[i];
+      sum += applied_[i];
+    }
+    if (!(den > 0.0) || !(num > 0.0))
+      return;
+    double& k = stiffness(sum);
+    k = std::clamp(std::sqrt(k * num / den), probe_stiffness_ / 50.0, 4.0 * probe_stiffness_);
+  }
+
   int n_;
   double step_;
-  int dimension_;
+  int lateral_axes_;
   double confining_;
-  double stiffness_;
-  static constexpr double kIntegralGain = 0.3;
-  double integral_[2] = {0.0, 0.0};
+  double tolerance_;
+  double probe_stiffness_;
+  double widening_, narrowing_;        //!< lateral stiffness estimates [Pa] per direction
+  double trend_[2] = {0.0, 0.0};       //!< predicted lateral log strain per increment step
+  double after_step_[2] = {0.0, 0.0};  //!< lateral stress error the last step left [Pa]
+  static constexpr double kTrendGain = 0.5;
+  double applied_[2] = {0.0, 0.0};  //!< lateral log strain of the last correction
+  double before_[2] = {0.0, 0.0};   //!< lateral stress (compression positive) before it
+  bool last_correction_ = false;
 };
 
 //! Constant-volume simple shear γ_xy (x moves with y), triangular cycles 0 → γa → −γa → 0.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "core/tensor.h"
 #include "element/element_test.h"
@@ -16,10 +17,14 @@ class StrainPath {
   virtual int increments() const = 0;
   //! Increment `k` (0-based) given the current Cauchy stress (tension positive).
   virtual Mat3 increment(int k, const Mat3& stress) = 0;
+  //! After an increment (or a previous correction): a further deformation, within the same
+  //! increment, that brings the stress-controlled directions back to their target; none when
+  //! the stress is on target (or the path controls no stress).
+  virtual std::optional<Mat3> correction(const Mat3& /*stress*/) { return std::nullopt; }
 };
 
-//! The path of `test` for an RVE of `dimension`; `lateral_stiffness` [Pa per unit strain]
-//! bounds the servo gain of the stress-controlled directions (drained tests).
+//! The path of `test` for an RVE of `dimension`; `lateral_stiffness` [Pa per unit strain] is
+//! the servo's first estimate of the packing's lateral stiffness (drained tests).
 std::unique_ptr<StrainPath> make_strain_path(const ElementTestSpec& test, int dimension,
                                              double confining_pressure, double lateral_stiffness);
 

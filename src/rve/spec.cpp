@@ -144,7 +144,9 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   s.dimension = node.get_or<int>("dimension", 3);
   if (s.dimension != 2 && s.dimension != 3)
     node.fail("dimension", "must be 2 (discs) or 3 (spheres), got " + std::to_string(s.dimension));
-  s.log_file = node.get_or<std::string>("log_file", "");
+  // File names are relative to the case file's folder (the case runs from any directory).
+  if (node.has("log_file"))
+    s.log_file = node.file_path("log_file");
   // Default by measurement (README, method notes): with streaming velocities the quasi-static
   // strength converges as the strain rate goes down; with remapped positions it does not.
   const std::string affine = node.choice_or(
@@ -163,7 +165,7 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   if (node.has("restart_file") == node.has("preparation"))
     node.fail("give exactly one of preparation (prepare a fresh packing) and restart_file");
   if (node.has("restart_file")) {
-    s.restart_file = node.get<std::string>("restart_file");
+    s.restart_file = node.file_path("restart_file");
     if (!std::filesystem::is_regular_file(s.restart_file))
       node.fail("restart_file", "no such file '" + s.restart_file + "'");
   }

@@ -3,7 +3,8 @@
 
 Common: summary.json keys, history.csv columns, start consolidated at TARGET_P (2 %).
 isotropic_compression: p grows, strain as imposed, void ratio follows the strain exactly.
-drained_biaxial: lateral stress held near TARGET_P, deviator mobilised, axial strain as imposed.
+drained_biaxial: lateral stress within the servo tolerance at every increment, deviator
+  mobilised, axial strain as imposed.
 undrained_cyclic_simple_shear: volume constant, γ follows the cycles, shear stress follows γ.
 """
 import csv
@@ -44,9 +45,16 @@ if test == "isotropic_compression":
     check(abs(e[-1] - expected_e) < 1e-9, f"void ratio {e[-1]} != {expected_e} from the strain")
 elif test == "drained_biaxial":
     check(abs(last["e_yy"] + 0.02) < 1e-9, f"axial strain {last['e_yy']} is not -0.02")
-    lateral = [-r["s_xx"] for r in rows[5:]]
-    worst = max(abs(s - target) for s in lateral) / target
-    check(worst < 0.15, f"lateral stress strays {100 * worst:.1f} % from the confining stress")
+    # The servo corrects every increment until the lateral stress is within the tolerance
+    # (default 0.5 %) of the confining stress (the pressure after preparation by default).
+    confining = summary["confining_pressure"]
+    tolerance = summary["lateral_stress"]["tolerance"]
+    check(abs(confining - target) <= 0.02 * target, f"confining stress {confining} is not {target}")
+    worst = max(abs(-r["s_xx"] - confining) for r in rows[1:]) / confining
+    check(worst <= tolerance, f"lateral stress strays {100 * worst:.2f} % from the confining "
+          f"stress (tolerance {100 * tolerance:.2f} %)")
+    check(worst <= summary["lateral_stress"]["max_relative_error"] + 1e-12,
+          "summary.json lateral_stress.max_relative_error is below what history.csv shows")
     check(max(-r["s_yy"] for r in rows) > 1.3 * target, "no deviator mobilised")
 elif test == "undrained_cyclic_simple_shear":
     check(max(abs(r["e_vol"]) for r in rows) < 1e-12, "volume changed in undrained shear")

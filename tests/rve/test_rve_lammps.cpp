@@ -1,5 +1,8 @@
-// The homogenised stress of a deformed LAMMPS RVE equals Σ r⊗f / V over its contacts.
+// The homogenised stress of a deformed LAMMPS RVE equals Σ r⊗f / V over its contacts, in 3D
+// (spheres) and 2D (discs), and a 2D LAMMPS packing consolidates like a LIGGGHTS one.
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "core/case_node.h"
 #include "rve/consolidation.h"
@@ -7,27 +10,65 @@
 
 using namespace mpm_lig;
 
-TEST(RveLammps, StressEqualsContactSumAfterDeformation) {
-  const auto doc = CaseDocument::parse(R"({"rve": {"engine": "lammps", "dimension": 3,
+namespace {
+
+rve::RveSpec lammps_spec(int dimension) {
+  const auto doc = CaseDocument::parse(R"({"rve": {"engine": "lammps", "dimension": )" +
+                                       std::to_string(dimension) + R"(,
       "grains": 100, "radius": {"min": 0.003, "max": 0.007}, "density": 2650, "seed": 5,
       "contact": {"youngs_modulus": 7e8, "poisson_ratio": 0.3, "friction": 0.5,
                   "damping_ratio": 0.1},
       "time_step_fraction": 0.15, "preparation": {"confining_pressure": 1e5},
       "substeps": {"fixed": 50}}})");
-  const rve::RveSpec spec = rve::parse_rve_spec(doc.root().child("rve"));
+  return rve::parse_rve_spec(doc.root().child("rve"));
+}
+
+//! Compress a fresh packing until it carries load, shear it, compare the engine's virial
+//! with the contact sum of the same force evaluation.
+void expect_stress_equals_contact_sum(int dimension) {
+  const rve::RveSpec spec = lammps_spec(dimension);
   auto r = rve::Rve::generate(spec, MPI_COMM_WORLD, "lammps RVE");
-  // Compress until the packing carries load, then shear it.
   Mat3 dF = Mat3::Identity() * (1.0 - 2e-3);
-  for (int k = 0; k < 400 && rve::mean_stress(r->stress(), 3) < 2e4; ++k)
+  if (dimension == 2)
+    dF(2, 2) = 1.0;
+  for (int k = 0; k < 400 && rve::mean_stress(r->stress(), dimension) < 2e4; ++k)
     r->deform(dF, 50);
   Mat3 shear = Mat3::Identity();
-  shear(0, 2) = 2e-3;
+  shear(0, dimension - 1) = 2e-3;
   r->deform(shear, 100);
   r->engine().command("run 0");  // virial and contact list of the same force evaluation
   const Mat3 s = r->stress();
-  ASSERT_GT(rve::mean_stress(s, 3), 0.0);
-  const Mat3 from_contacts = rve::contact_stress(r->engine().contacts(), r->volume());
+  ASSERT_GT(rve::mean_stress(s, dimension), 1e3);
+  const auto contacts = r->engine().contacts();
+  ASSERT_GT(contacts.size(), static_cast<std::size_t>(spec.grains / 2));
+  const Mat3 from_contacts = rve::contact_stress(contacts, r->volume());
   const Voigt6 a = to_voigt(s), b = to_voigt(from_contacts);  // upper components
   for (int i = 0; i < 6; ++i)
     EXPECT_NEAR(a[i], b[i], 1e-6 * s.norm()) << kVoigtNames[i];
+}
+
+}  // namespace
+
+TEST(RveLammps, StressEqualsContactSumAfterDeformation3d) {
+  expect_stress_equals_contact_sum(3);
+}
+
+TEST(RveLammps, StressEqualsContactSumAfterDeformation2d) {
+  expect_stress_equals_contact_sum(2);
+}
+
+// Consolidation reads contacts after every servo run: right after `fix deform` changed the
+// cell, when the engine's periodic images still sit in the previous step's cell.
+TEST(RveLammps, ConsolidatesIn2dAndReadsContactsRightAfterDeforming) {
+  const rve::RveSpec spec = lammps_spec(2);
+  auto r = rve::Rve::generate(spec, MPI_COMM_WORLD, "lammps RVE");
+  const rve::ConsolidationResult c = rve::consolidate(*r);
+  const double p = rve::mean_stress(c.final.stress, 2);
+  EXPECT_NEAR(p, 1e5, 0.02 * 1e5);
+  EXPECT_LT(c.final.kinetic_ratio(), 0.01);
+  EXPECT_GT(c.final.coordination_number, 2.5);
+  // Without a `run 0`: the contact sum differs from the last step's virial only by that
+  // step's change (damping velocities, one step of deformation).
+  const Mat3 from_contacts = rve::contact_stress(r->engine().contacts(), r->volume());
+  EXPECT_LT((from_contacts - r->stress()).norm(), 0.01 * p);
 }
