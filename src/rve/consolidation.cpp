@@ -9,6 +9,9 @@ namespace {
 
 //! Steps per servo cycle: short against the time a stress wave needs to cross the cell.
 constexpr int kChunk = 100;
+//! Compaction stops at the target void ratio once the pressure is this close (relative) to its
+//! target: the re-consolidation with the real friction then changes the void ratio little.
+constexpr double kNearTarget = 0.05;
 //! A relaxed packing: kinetic energy this small against the elastic energy.
 constexpr double kAtRest = 2e-3;
 
@@ -21,7 +24,8 @@ double max_strain_rate(const RveSpec& spec, double pressure) {
 
 }  // namespace
 
-Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left) {
+Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left,
+                            double stop_void_ratio) {
   const RveSpec& spec = rve.spec();
   const int dim = spec.dimension;
   const double max_step = max_strain_rate(spec, pressure) * kChunk * spec.time_step;
@@ -46,6 +50,9 @@ Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& s
     steps_left -= kChunk;
     now = rve.observe();
     const double p_new = mean_stress(now.stress, dim);
+    if (stop_void_ratio > 0.0 && now.void_ratio <= stop_void_ratio &&
+        std::abs(p_new - pressure) <= kNearTarget * pressure)
+      return now;
     const bool on_target = std::abs(p_new - pressure) <= tolerance * pressure;
     settled = on_target && now.kinetic_ratio() < kAtRest ? settled + 1 : 0;
     if (settled >= 3)
@@ -64,13 +71,15 @@ ConsolidationResult consolidate(Rve& rve) {
   double friction = spec.contact.friction;
   result.friction_used = friction;
   // Lower friction lets grains slide into a denser packing; halve it until the target void
-  // ratio is reached (or friction is gone), then consolidate with the real friction.
+  // ratio is reached (or friction is gone), stopping the compaction as soon as the void ratio
+  // crosses the target, then consolidate with the real friction.
   result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
   if (prep.target_void_ratio) {
     while (result.final.void_ratio > *prep.target_void_ratio && friction > 0.0) {
       friction = friction > 1e-3 ? 0.5 * friction : 0.0;
       rve.set_friction(friction);
-      result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
+      result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left,
+                                     *prep.target_void_ratio);
     }
     result.friction_used = friction;
     result.void_ratio_reached = result.final.void_ratio <= *prep.target_void_ratio;

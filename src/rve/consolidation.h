@@ -20,7 +20,9 @@ struct ConsolidationResult {
 ConsolidationResult consolidate(Rve& rve);
 
 //! Servo the RVE isotropically to mean stress `pressure` (within `tolerance`, relative) and
-//! let it come to rest; returns the final state. Used by consolidation and element tests.
-Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left);
+//! let it come to rest; returns the final state. With `stop_void_ratio` > 0 it returns as soon
+//! as the void ratio is at or below it with the pressure within 5 % of the target (compaction).
+Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left,
+                            double stop_void_ratio = 0.0);
 
 }  // namespace mpm_lig::rve
