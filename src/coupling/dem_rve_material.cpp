@@ -1,5 +1,6 @@
 #include "coupling/dem_rve_material.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
@@ -58,11 +59,25 @@ DemRveMaterial::DemRveMaterial(const CaseNode& node) : path_(node.path()) {
 DemRveMaterial::~DemRveMaterial() = default;
 
 std::string DemRveMaterial::point_label(std::size_t point) const {
-  return path_ + " point " + std::to_string(point);
+  return path_ + " material point " + std::to_string(point) + " (MPI rank " +
+         std::to_string(rank_) + ")";
 }
 
-void DemRveMaterial::prepare(MPI_Comm comm, const std::string& work_dir) {
-  comm_ = comm;
+void DemRveMaterial::check_dimension(const CaseNode& node, int dimension) const {
+  if (dimension == 3 && spec_.dimension == 2)
+    node.child("rve").fail("dimension", "2D disc packings cannot serve a 3D MPM analysis");
+}
+
+void DemRveMaterial::prepare(const materials::MaterialContext& context) {
+  const double start = MPI_Wtime();
+  comm_ = context.comm;
+  MPI_Comm_rank(comm_, &rank_);
+  const std::string& work_dir = context.work_dir;
+  if (spec_.restart_file.empty()) {
+    if (rank_ == 0)
+      std::filesystem::create_directories(work_dir);
+    MPI_Barrier(comm_);
+  }
   std::vector<std::string> files(packing_count_);
   for (int k = 0; k < packing_count_; ++k) {
     files[k] =
@@ -72,7 +87,7 @@ void DemRveMaterial::prepare(MPI_Comm comm, const std::string& work_dir) {
             : spec_.restart_file;
   }
   // The packings are spread over the rank groups like RVEs are.
-  RveLayout layout(comm, ranks_per_rve_, static_cast<std::size_t>(packing_count_));
+  RveLayout layout(comm_, ranks_per_rve_, static_cast<std::size_t>(packing_count_));
   std::vector<double> owned;
   for (std::size_t k = layout.first(); k < layout.last(); ++k) {
     const std::string label = path_ + " packing " + std::to_string(k);
@@ -99,6 +114,7 @@ void DemRveMaterial::prepare(MPI_Comm comm, const std::string& work_dir) {
   for (int k = 0; k < packing_count_; ++k) {
     packings_.push_back(packing_from(&all[k * kPackingValues], files[k]));
   }
+  cost_.preparation_seconds += MPI_Wtime() - start;
 }
 
 double DemRveMaterial::density() const {
@@ -137,6 +153,7 @@ Mat3 DemRveMaterial::initial_stress(std::size_t point) const {
 }
 
 void DemRveMaterial::create_rves() {
+  const double start = MPI_Wtime();
   layout_ = std::make_unique<RveLayout>(comm_, ranks_per_rve_, points_);
   stress_.resize(points_);
   substeps_.assign(points_, 0.0);
@@ -146,22 +163,27 @@ void DemRveMaterial::create_rves() {
     rves_.push_back(rve::Rve::from_restart(spec_, packings_[packing_of(p)].restart_file,
                                            layout_->group_comm(), point_label(p)));
   }
+  cost_.simulations = points_;
+  cost_.preparation_seconds += MPI_Wtime() - start;
 }
 
-void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::vector<Mat3>& dF,
-                            double /*dt*/, std::vector<Mat3>& stress) {
-  if (!layout_)
-    create_rves();
-  std::vector<long> batch_index(points_, -1);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    batch_index[points[i]] = static_cast<long>(i);
+void DemRveMaterial::inject_fault_if_asked(std::size_t point, rve::Rve& rve) const {
+  const char* target = std::getenv("MPM_LIG_FAULT_POINT");
+  if (!target || std::strtoul(target, nullptr, 10) != point)
+    return;
+  const char* when = std::getenv("MPM_LIG_FAULT_UPDATE");
+  if (updates_ == (when ? std::strtol(when, nullptr, 10) : 1L))
+    rve.engine().command("mpm_lig_injected_fault (MPM_LIG_FAULT_POINT)");
+}
 
-  std::vector<Mat3> owned_stress;
-  std::vector<double> owned_steps;
+void DemRveMaterial::deform_owned(const std::vector<long>& batch_index, const std::vector<Mat3>& dF,
+                                  std::vector<Mat3>& owned_stress,
+                                  std::vector<double>& owned_steps) {
   for (std::size_t p = layout_->first(); p < layout_->last(); ++p) {
     rve::Rve& rve = *rves_[p - layout_->first()];
     double steps = 0.0;
     if (batch_index[p] >= 0) {
+      inject_fault_if_asked(p, rve);
       // One rank's failure must end the whole job: the others are about to wait for it.
       try {
         steps = rve.deform(dF[batch_index[p]]);
@@ -169,35 +191,55 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
         if (!stress_[p].allFinite())
           throw std::runtime_error("stress is not finite (NaN)");
         if (rve.engine().atom_count() != spec_.grains)
-          throw std::runtime_error("lost grains");
+          throw std::runtime_error("lost grains: " + std::to_string(rve.engine().atom_count()) +
+                                   " of " + std::to_string(spec_.grains) + " left");
       } catch (const std::exception& e) {
-        abort_job(point_label(p) + ": " + e.what(), kExitEngineFailure);
+        abort_job(point_label(p) + " failed at MPM update " + std::to_string(updates_) + ": " +
+                      e.what() + "\nlast engine output:\n" + rve.engine().recent_output(),
+                  kExitEngineFailure);
       }
     }
     owned_stress.push_back(stress_[p]);
     owned_steps.push_back(steps);
   }
+}
+
+void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::vector<Mat3>& dF,
+                            double /*dt*/, std::vector<Mat3>& stress) {
+  if (!layout_)
+    create_rves();
+  ++updates_;
+  std::vector<long> batch_index(points_, -1);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    batch_index[points[i]] = static_cast<long>(i);
+
+  const double start = MPI_Wtime();
+  std::vector<Mat3> owned_stress;
+  std::vector<double> owned_steps;
+  deform_owned(batch_index, dF, owned_stress, owned_steps);
+  const double computed = MPI_Wtime();
   stress_ = layout_->gather(owned_stress);
   substeps_ = layout_->gather(owned_steps, 1);
+  cost_.compute_seconds += computed - start;
+  cost_.communication_seconds += MPI_Wtime() - computed;
+  // Every rank knows every RVE's step count: the total needs no reduction.
+  for (const double steps : substeps_)
+    cost_.particle_steps += steps * static_cast<double>(spec_.grains);
   for (std::size_t i = 0; i < points.size(); ++i)
     stress[i] = stress_[points[i]];
 }
 
 std::vector<std::string> DemRveMaterial::state_names() const {
-  return {"dem_substeps", "rve_group"};
+  // Which rank group owns a point is not a result (it depends on the rank count): not here.
+  return {"dem_substeps"};
 }
 
-double DemRveMaterial::state(std::size_t point, std::size_t k) const {
-  if (k == 0)
-    return point < substeps_.size() ? substeps_[point] : 0.0;
-  return layout_ ? static_cast<double>(layout_->owner(point)) : 0.0;
+double DemRveMaterial::state(std::size_t point, std::size_t /*k*/) const {
+  return point < substeps_.size() ? substeps_[point] : 0.0;
 }
 
-double DemRveMaterial::particle_steps() const {
-  double total = 0.0;
-  for (const auto& rve : rves_)
-    total += rve->particle_steps();
-  return total;
+materials::MaterialCost DemRveMaterial::cost() const {
+  return cost_;
 }
 
 }  // namespace mpm_lig::coupling

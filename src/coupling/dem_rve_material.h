@@ -26,6 +26,10 @@ struct Packing {
 //! point i is cloned from packing i mod K. The MPM is replicated on every rank, so every
 //! rank calls update() with the same batch; each rank group deforms the RVEs it owns and
 //! the stresses are gathered to all ranks in point order (RveLayout).
+//!
+//! Test-only fault injection: with MPM_LIG_FAULT_POINT=i in the environment, the rank that owns
+//! point i sends its engine an unknown command at update MPM_LIG_FAULT_UPDATE (default 1):
+//! the engine's own error path must end the whole job naming the point and its rank.
 class DemRveMaterial final : public materials::Material {
  public:
   //! Validates the whole node; creates nothing.
@@ -33,24 +37,30 @@ class DemRveMaterial final : public materials::Material {
   ~DemRveMaterial() override;
 
   std::string type() const override { return "dem_rve"; }
+  //! Collective: consolidate the packings into `context.work_dir` (or load rve.restart_file).
+  void prepare(const materials::MaterialContext& context) override;
+  void check_dimension(const CaseNode& node, int dimension) const override;
   double density() const override;
   double wave_modulus() const override;
   std::size_t add_points(std::size_t count) override;
   void set_stress(std::size_t point, const Mat3& sigma) override;
+  //! Stress of `point` before any deformation (its packing's).
+  Mat3 initial_stress(std::size_t point) const override;
   void update(const std::vector<std::size_t>& points, const std::vector<Mat3>& dF, double dt,
               std::vector<Mat3>& stress) override;
   std::vector<std::string> state_names() const override;
   double state(std::size_t point, std::size_t k) const override;
+  materials::MaterialCost cost() const override;
 
-  //! Collective over `comm`: consolidate (or load) the packings into `work_dir`.
-  void prepare(MPI_Comm comm, const std::string& work_dir);
-  //! Stress of `point` before any deformation (its packing's).
-  Mat3 initial_stress(std::size_t point) const;
-  //! DEM particle-steps run by this rank's RVEs so far.
-  double particle_steps() const;
+  //! The prepared packings (after prepare()).
+  const std::vector<Packing>& packings() const { return packings_; }
+  const rve::RveSpec& spec() const { return spec_; }
 
  private:
   void create_rves();
+  void deform_owned(const std::vector<long>& batch_index, const std::vector<Mat3>& dF,
+                    std::vector<Mat3>& owned_stress, std::vector<double>& owned_steps);
+  void inject_fault_if_asked(std::size_t point, rve::Rve& rve) const;
   std::size_t packing_of(std::size_t point) const { return point % packings_.size(); }
   std::string point_label(std::size_t point) const;
 
@@ -66,6 +76,9 @@ class DemRveMaterial final : public materials::Material {
   std::vector<std::unique_ptr<rve::Rve>> rves_;  //!< the owned block, index - layout.first()
   std::vector<Mat3> stress_;                     //!< every point's last stress (all ranks)
   std::vector<double> substeps_;                 //!< every point's last DEM step count
+  long updates_ = 0;
+  int rank_ = 0;
+  materials::MaterialCost cost_;
 };
 
 }  // namespace mpm_lig::coupling

@@ -4,11 +4,29 @@
 #include <string>
 #include <vector>
 
+#include <mpi.h>
+
 #include "core/case_node.h"
 #include "core/registry.h"
 #include "core/tensor.h"
 
 namespace mpm_lig::materials {
+
+//! What a material gets before the run: the ranks it may spread over and a folder of its own.
+struct MaterialContext {
+  MPI_Comm comm = MPI_COMM_WORLD;  //!< every rank of the run (the MPM is replicated on all)
+  std::string work_dir;            //!< for files the material makes (packings); may not exist yet
+};
+
+//! Cost counters of a material whose points run simulations of their own (DEM RVEs). The
+//! same on every rank except the times, which are this rank's.
+struct MaterialCost {
+  std::size_t simulations = 0;         //!< RVEs (all ranks)
+  double particle_steps = 0.0;         //!< DEM grain-steps so far, each RVE counted once
+  double compute_seconds = 0.0;        //!< this rank's time in its RVEs
+  double communication_seconds = 0.0;  //!< this rank's time exchanging stresses (waits included)
+  double preparation_seconds = 0.0;    //!< prepare(): packings made or loaded
+};
 
 //! The constitutive side of a material point, seen by the MPM solver.
 //!
@@ -22,6 +40,13 @@ class Material {
 
   //! Registered type name ("linear_elastic", "mohr_coulomb", ...).
   virtual std::string type() const = 0;
+
+  //! Collective over `context.comm`, called on every rank before density(), wave_modulus()
+  //! and add_points(): a DEM material makes its packings here.
+  virtual void prepare(const MaterialContext& /*context*/) {}
+  //! Case-level check (`node` is the material's case node): fails with a CaseError when the
+  //! material cannot serve an analysis of this dimension.
+  virtual void check_dimension(const CaseNode& /*node*/, int /*dimension*/) const {}
   //! Mass density [kg/m^3].
   virtual double density() const = 0;
   //! Largest constrained (P-wave) modulus the material can show [Pa]: sets the CFL time step.
@@ -29,6 +54,8 @@ class Material {
 
   //! Add `count` points with zero stress and fresh state; returns the index of the first.
   virtual std::size_t add_points(std::size_t count) = 0;
+  //! The stress `point` starts with (a DEM point: its consolidated packing's); zero by default.
+  virtual Mat3 initial_stress(std::size_t /*point*/) const { return Mat3::Zero(); }
   //! Impose an initial stress (for example K0) on one point, where the material allows it.
   virtual void set_stress(std::size_t point, const Mat3& sigma) = 0;
 
@@ -41,6 +68,8 @@ class Material {
   virtual std::vector<std::string> state_names() const { return {}; }
   //! Value of state variable `k` of `point`.
   virtual double state(std::size_t /*point*/, std::size_t /*k*/) const { return 0.0; }
+  //! Cost counters (zero for continuum laws).
+  virtual MaterialCost cost() const { return {}; }
 };
 
 //! Creates a material from its case node (`materials[i]`); the node's "type" picks the entry.

@@ -121,6 +121,7 @@ void read_materials(const CaseNode& root, const materials::MaterialRegistry& reg
       m.fail("id", "material id " + std::to_string(id) + " is used twice");
     c.material_ids.push_back(id);
     c.materials.push_back(registry.create(m, "type", m));
+    c.materials.back()->check_dimension(m, c.dimension);
   }
 }
 

@@ -3,17 +3,39 @@
 #include <functional>
 #include <string>
 
+#include <mpi.h>
+
 #include "mpm/case_spec.h"
 #include "mpm/solver.h"
 
 namespace mpm_lig::mpm {
 
-//! Runs a validated case: the gravity stage (if any), then the main stage until the end
-//! time or step count, with the Recorder's output when `directory` is not empty.
+//! How run_case writes: `directory` empty means no files and no progress (the other ranks).
+struct RunOptions {
+  std::string directory;
+  int ranks = 1;               //!< MPI ranks of the run (for the summary)
+  double prior_seconds = 0.0;  //!< wall time spent before run_case (material preparation)
+};
+
+//! Collective over `comm`: every material's prepare() (DEM packings go to `work_dir`). Must
+//! come before run_case, which reads densities and wave moduli.
+void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir);
+
+//! Runs a validated, prepared case: the gravity stage (if any), then the main stage until the
+//! end time or step count, with the Recorder's output when `options.directory` is not empty.
 //! `observer` (optional) sees the solver after every main-stage step: tests use it.
 template <int D>
-void run_case(MpmCase& c, const std::string& directory,
+void run_case(MpmCase& c, const RunOptions& options,
               const std::function<void(const Solver<D>&)>& observer = {});
+
+//! The same with `directory` only (serial runs, tests).
+template <int D>
+void run_case(MpmCase& c, const std::string& directory,
+              const std::function<void(const Solver<D>&)>& observer = {}) {
+  RunOptions options;
+  options.directory = directory;
+  run_case<D>(c, options, observer);
+}
 
 //! Steps the main stage will take.
 long main_stage_steps(const MpmCase& c, double dt);

@@ -44,7 +44,7 @@ void fill_body(const MpmCase& c, int body_index, Particles<D>& p) {
     p.volume.push_back(volume);
     p.volume0.push_back(volume);
     p.deformation.push_back(Mat3::Identity());
-    p.stress.push_back(Mat3::Zero());
+    p.stress.push_back(material.initial_stress(first + static_cast<std::size_t>(k)));
     p.material.push_back(body.material);
     p.material_point.push_back(first + static_cast<std::size_t>(k));
     p.body.push_back(body_index);

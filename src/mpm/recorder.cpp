@@ -20,6 +20,19 @@ std::string footing_prefix(std::size_t k) {
 
 }  // namespace
 
+materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::Material>>& m) {
+  materials::MaterialCost total;
+  for (const auto& material : m) {
+    const materials::MaterialCost c = material->cost();
+    total.simulations += c.simulations;
+    total.particle_steps += c.particle_steps;
+    total.compute_seconds += c.compute_seconds;
+    total.communication_seconds += c.communication_seconds;
+    total.preparation_seconds += c.preparation_seconds;
+  }
+  return total;
+}
+
 template <int D>
 std::vector<std::string> Recorder<D>::history_columns(const MpmCase& c) {
   std::vector<std::string> columns = {"step", "time", "kinetic_energy"};
@@ -68,6 +81,7 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
 
 template <int D>
 void Recorder<D>::after_step(const Solver<D>& solver) {
+  const auto start = std::chrono::steady_clock::now();
   const long step = solver.steps();
   for (const auto& f : solver.footings())
     peak_q_ = std::max(peak_q_, f.load() / f.contact_area());
@@ -79,6 +93,7 @@ void Recorder<D>::after_step(const Solver<D>& solver) {
     if (step > 0)
       print_progress(solver);
   }
+  output_seconds_ += seconds_since(start);
 }
 
 template <int D>
@@ -129,19 +144,42 @@ void Recorder<D>::print_progress(const Solver<D>& solver) {
   const double interval = seconds_since(last_);
   const double rate = (solver.steps() - last_step_) / std::max(interval, 1e-9);
   const double eta = (total_steps_ - solver.steps()) / std::max(rate, 1e-9);
-  std::printf("mpm step %ld/%ld  t = %.6g s  %.0f steps/s  ETA %.1f s\n", solver.steps(),
-              total_steps_, solver.time(), rate, eta);
+  const double particle_steps = total_cost(solver.materials()).particle_steps;
+  if (particle_steps > 0.0) {
+    // Summed over all ranks: every rank knows every RVE's step count.
+    const double dem_rate = (particle_steps - last_particle_steps_) / std::max(interval, 1e-9);
+    std::printf(
+        "mpm step %ld/%ld  t = %.6g s  %.3g steps/s  DEM %.3g M particle-steps/s  "
+        "ETA %.1f s\n",
+        solver.steps(), total_steps_, solver.time(), rate, dem_rate * 1e-6, eta);
+  } else {
+    std::printf("mpm step %ld/%ld  t = %.6g s  %.0f steps/s  ETA %.1f s\n", solver.steps(),
+                total_steps_, solver.time(), rate, eta);
+  }
   std::fflush(stdout);
+  last_particle_steps_ = particle_steps;
   last_ = std::chrono::steady_clock::now();
   last_step_ = solver.steps();
 }
 
 template <int D>
-void Recorder<D>::finish(const Solver<D>& solver, long gravity_stage_steps, double wall_seconds) {
+void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
+  const materials::MaterialCost cost = total_cost(solver.materials());
   nlohmann::json s;
-  s["wall_seconds"] = wall_seconds;
+  s["wall_seconds"] = totals.wall_seconds;
+  s["ranks"] = totals.ranks;
+  s["rve_count"] = cost.simulations;
+  s["dem_particle_steps"] = cost.particle_steps;
+  // Rank 0's time: the exchange includes waiting for the slowest rank (load imbalance).
+  const double mpm = totals.wall_seconds - cost.compute_seconds - cost.communication_seconds -
+                     cost.preparation_seconds - output_seconds_;
+  s["time_split"] = {{"dem", cost.compute_seconds},
+                     {"communication", cost.communication_seconds},
+                     {"preparation", cost.preparation_seconds},
+                     {"output", output_seconds_},
+                     {"mpm", mpm}};
   s["mpm_steps"] = solver.steps();
-  s["gravity_stage_steps"] = gravity_stage_steps;
+  s["gravity_stage_steps"] = totals.gravity_stage_steps;
   s["material_points"] = solver.particles().size();
   s["time"] = solver.time();
   s["time_step"] = solver.dt();

@@ -11,6 +11,16 @@
 
 namespace mpm_lig::mpm {
 
+//! What the summary needs beyond the solver's state.
+struct RunTotals {
+  long gravity_stage_steps = 0;
+  int ranks = 1;
+  double wall_seconds = 0.0;  //!< the whole run, material preparation included
+};
+
+//! The materials' cost counters added up (DEM RVEs; zero for continuum materials).
+materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::Material>>& m);
+
 //! What an MPM run writes into its output folder: history.csv (every `history_every`
 //! steps), results.h5/.xdmf (every `output_every` steps), one progress line per output
 //! interval, and summary.json at the end.
@@ -22,8 +32,8 @@ class Recorder {
 
   //! Called after every main-stage step (and once before the first).
   void after_step(const Solver<D>& solver);
-  //! Write summary.json; `wall_seconds` covers the whole run (gravity stage included).
-  void finish(const Solver<D>& solver, long gravity_stage_steps, double wall_seconds);
+  //! Write summary.json: run size, wall time and its split (DEM, MPM, communication, ...).
+  void finish(const Solver<D>& solver, const RunTotals& totals);
 
   //! Column names of history.csv.
   static std::vector<std::string> history_columns(const MpmCase& c);
@@ -41,6 +51,8 @@ class Recorder {
   std::unique_ptr<io::FieldWriter> fields_;
   std::chrono::steady_clock::time_point start_, last_;
   long last_step_ = 0;
+  double last_particle_steps_ = 0.0;
+  double output_seconds_ = 0.0;
   double peak_q_ = 0.0;
 };
 

@@ -1,13 +1,17 @@
 #include "mpm/register.h"
 
+#include <mpi.h>
+
+#include "coupling/register.h"
 #include "mpm/case_spec.h"
 #include "mpm/driver.h"
 
 namespace mpm_lig::mpm {
 namespace {
 
-//! An explicit MPM run on continuum materials. Serial for now: rank 0 runs it, the other
-//! ranks wait (the batch-shaped material interface lets a DEM material spread out later).
+//! An explicit MPM run. The MPM is replicated on every rank (same arithmetic everywhere, so
+//! the same answer); a DEM material spreads its RVEs over the ranks and gathers their
+//! stresses. Only rank 0 writes files and progress.
 class MpmAnalysis final : public Analysis {
  public:
   explicit MpmAnalysis(MpmCase c) : case_(std::move(c)) {}
@@ -15,12 +19,16 @@ class MpmAnalysis final : public Analysis {
   void run(const RunContext& context) override {
     int rank = 0;
     MPI_Comm_rank(context.comm, &rank);
-    if (rank == 0) {
-      if (case_.dimension == 2)
-        run_case<2>(case_, context.output_dir);
-      else
-        run_case<3>(case_, context.output_dir);
-    }
+    RunOptions options;
+    options.directory = rank == 0 ? context.output_dir : "";
+    MPI_Comm_size(context.comm, &options.ranks);
+    const double start = MPI_Wtime();
+    prepare_materials(case_, context.comm, context.output_dir + "/packings");
+    options.prior_seconds = MPI_Wtime() - start;
+    if (case_.dimension == 2)
+      run_case<2>(case_, options);
+    else
+      run_case<3>(case_, options);
     MPI_Barrier(context.comm);
   }
 
@@ -39,6 +47,7 @@ void register_analyses(AnalysisRegistry& registry) {
   registry.add("mpm", [](const CaseNode& root) {
     materials::MaterialRegistry materials;
     materials::register_materials(materials);
+    coupling::register_materials(materials);
     return make_analysis(root, materials);
   });
 }

@@ -46,6 +46,8 @@ class Solver {
   const Grid<D>& grid() const { return grid_; }
   const std::vector<RigidFooting<D>>& footings() const { return footings_; }
   const NodeConstraints<D>& constraints() const { return constraints_; }
+  //! Each point's deformation increment dF of the last step (what its material received).
+  const std::vector<Mat3>& increments() const { return increments_; }
   const std::vector<std::unique_ptr<materials::Material>>& materials() const { return materials_; }
 
   double kinetic_energy() const;
