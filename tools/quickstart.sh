@@ -16,7 +16,7 @@ case $what in
   demo)
     mpirun --allow-run-as-root --oversubscribe -np 2 build/mpm_lig cases/quickstart.json \
       --output out/quickstart
-    echo "quickstart results: out/quickstart (history.csv, summary.json)"
+    echo "quickstart results: out/quickstart (history.csv, results.xdmf for ParaView, summary.json)"
     ;;
   test)
     ctest --test-dir build --output-on-failure -j"$jobs" ${CTEST_ARGS:-}
