@@ -229,6 +229,64 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
     stress[i] = stress_[points[i]];
 }
 
+namespace {
+
+std::string checkpoint_file(const std::string& dir, std::size_t point) {
+  return dir + "/point_" + std::to_string(point) + ".restart";
+}
+
+}  // namespace
+
+std::vector<double> DemRveMaterial::write_checkpoint(const std::string& dir) {
+  if (!layout_)
+    throw std::logic_error(path_ + ": checkpoint before the first update");
+  std::vector<double> owned;
+  for (std::size_t p = layout_->first(); p < layout_->last(); ++p) {
+    rve::Rve& rve = *rves_[p - layout_->first()];
+    rve.write_checkpoint(checkpoint_file(dir, p));
+    const rve::Rve::State s = rve.state();
+    owned.insert(owned.end(), stress_[p].data(), stress_[p].data() + 9);
+    owned.push_back(substeps_[p]);
+    owned.insert(owned.end(), s.rotation.data(), s.rotation.data() + 9);
+    owned.insert(owned.end(), s.streaming.data(), s.streaming.data() + 9);
+    owned.push_back(s.particle_steps);
+    owned.push_back(s.last_mean_stress);
+  }
+  return layout_->gather(owned, kCheckpointValues);
+}
+
+void DemRveMaterial::restore_checkpoint(const std::string& dir, const std::vector<double>& rows,
+                                        long updates, double particle_steps) {
+  if (rows.size() != points_ * kCheckpointValues)
+    throw std::runtime_error(path_ + ": the checkpoint in '" + dir + "' holds " +
+                             std::to_string(rows.size() / kCheckpointValues) +
+                             " material points, the case has " + std::to_string(points_));
+  const double start = MPI_Wtime();
+  layout_ = std::make_unique<RveLayout>(comm_, ranks_per_rve_, points_);
+  stress_.resize(points_);
+  substeps_.resize(points_);
+  rves_.clear();
+  for (std::size_t p = 0; p < points_; ++p) {
+    const double* row = rows.data() + p * kCheckpointValues;
+    stress_[p] = Eigen::Map<const Mat3>(row);
+    substeps_[p] = row[9];
+    if (p < layout_->first() || p >= layout_->last())
+      continue;
+    rves_.push_back(rve::Rve::from_restart(spec_, checkpoint_file(dir, p), layout_->group_comm(),
+                                           point_label(p)));
+    rve::Rve::State s;
+    s.rotation = Eigen::Map<const Mat3>(row + 10);
+    s.streaming = Eigen::Map<const Mat3>(row + 19);
+    s.particle_steps = row[28];
+    s.last_mean_stress = row[29];
+    rves_.back()->restore(s);
+  }
+  updates_ = updates;
+  cost_.simulations = points_;
+  cost_.particle_steps = particle_steps;
+  cost_.preparation_seconds += MPI_Wtime() - start;
+}
+
 std::vector<std::string> DemRveMaterial::state_names() const {
   // Which rank group owns a point is not a result (it depends on the rank count): not here.
   return {"dem_substeps"};

@@ -52,6 +52,18 @@ class DemRveMaterial final : public materials::Material {
   double state(std::size_t point, std::size_t k) const override;
   materials::MaterialCost cost() const override;
 
+  //! Values per point in a checkpoint row: stress (9), DEM steps, Q (9), streaming (9),
+  //! particle-steps, last mean stress.
+  static constexpr int kCheckpointValues = 30;
+  //! Collective: every owned RVE writes `dir/point_<i>.restart` (the folder must exist);
+  //! returns every point's row (all ranks). Only after the first update.
+  std::vector<double> write_checkpoint(const std::string& dir);
+  //! Collective: the RVEs again from `dir` and the rows of write_checkpoint, before any update.
+  void restore_checkpoint(const std::string& dir, const std::vector<double>& rows, long updates,
+                          double particle_steps);
+  //! update() calls so far (MPM steps).
+  long updates() const { return updates_; }
+
   //! The prepared packings (after prepare()).
   const std::vector<Packing>& packings() const { return packings_; }
   const rve::RveSpec& spec() const { return spec_; }

@@ -278,6 +278,14 @@ void read_output(const CaseNode& root, MpmCase& c) {
   if ((c.history_every = o.get_or<long>("history_every", 1)) < 1)
     o.fail("history_every", "must be >= 1");
   c.write_fields = o.get_or<bool>("fields", true);
+  if ((c.checkpoint_every = o.get_or<long>("checkpoint_every", 0)) < 0)
+    o.fail("checkpoint_every", "must be >= 0 (0: checkpoints on SIGTERM/SIGINT only)");
+  for (const auto& m : c.materials) {
+    // A checkpoint saves each point's stress; a DEM point's RVE saves its own state.
+    if (c.checkpoint_every > 0 && m->type() != "dem_rve" && !m->state_names().empty())
+      o.fail("checkpoint_every", "material type '" + m->type() +
+                                     "' has state variables a checkpoint does not save yet");
+  }
 }
 
 }  // namespace

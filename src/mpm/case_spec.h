@@ -101,6 +101,7 @@ struct MpmCase {
   // output
   long output_every = 100;
   long history_every = 1;
+  long checkpoint_every = 0;  //!< main-stage steps between checkpoints; 0: only on SIGTERM
   bool write_fields = true;
 };
 

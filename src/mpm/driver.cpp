@@ -2,11 +2,43 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <stdexcept>
 
+#include "mpm/checkpoint.h"
 #include "mpm/recorder.h"
 
 namespace mpm_lig::mpm {
+namespace {
+
+volatile std::sig_atomic_t g_stop_requested = 0;
+
+extern "C" void request_stop(int /*signal*/) {
+  g_stop_requested = 1;
+}
+
+//! SIGTERM (end of a batch job's wall time) and SIGINT only set a flag: the run stops
+//! between two steps, when all ranks agree, and writes a checkpoint first.
+void install_stop_handlers() {
+  std::signal(SIGTERM, request_stop);
+  std::signal(SIGINT, request_stop);
+}
+
+bool stop_requested(MPI_Comm comm) {
+  int local = g_stop_requested ? 1 : 0, any = 0;
+  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any != 0;
+}
+
+long kill_step() {
+  const char* v = std::getenv("MPM_LIG_KILL_AT_STEP");
+  return v ? std::strtol(v, nullptr, 10) : -1;
+}
+
+}  // namespace
 
 long main_stage_steps(const MpmCase& c, double dt) {
   if (c.end_steps > 0)
@@ -25,26 +57,69 @@ void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir) {
 }
 
 template <int D>
-void run_case(MpmCase& c, const RunOptions& options,
+bool run_case(MpmCase& c, const RunOptions& options,
               const std::function<void(const Solver<D>&)>& observer) {
   const auto start = std::chrono::steady_clock::now();
   Solver<D> solver(c);
-  if (c.gravity_stage_steps > 0) {
+  const bool checkpoints = !options.run_dir.empty();
+  RecorderState resumed;
+  if (options.resume) {
+    resumed = read_checkpoint<D>(c, solver, options.run_dir, options.comm);
+  } else if (c.gravity_stage_steps > 0) {
     solver.set_gravity_stage(true, c.gravity_stage_damping);
     for (long k = 0; k < c.gravity_stage_steps; ++k)
       solver.step();
     solver.begin_main_stage();
   }
+  const std::string obstacle = checkpoint_obstacle(solver);
+  if (checkpoints) {
+    if (c.checkpoint_every > 0 && !obstacle.empty())
+      throw std::runtime_error("output.checkpoint_every: " + obstacle);
+    install_stop_handlers();
+  }
   const long total = main_stage_steps(c, solver.dt());
   std::unique_ptr<Recorder<D>> recorder;
-  if (!options.directory.empty())
-    recorder = std::make_unique<Recorder<D>>(c, solver, options.directory, total);
+  if (!options.directory.empty()) {
+    recorder = std::make_unique<Recorder<D>>(c, solver, options.directory, total,
+                                             options.resume ? &resumed : nullptr);
+  }
+  const long kill_at = kill_step();
+  int rank = 0;
+  MPI_Comm_rank(options.comm, &rank);
   while (solver.steps() < total) {
     solver.step();
     if (recorder)
       recorder->after_step(solver);
     if (observer)
       observer(solver);
+    if (!checkpoints)
+      continue;
+    const bool stop = stop_requested(options.comm);
+    const bool due = c.checkpoint_every > 0 && solver.steps() % c.checkpoint_every == 0 &&
+                     solver.steps() < total;
+    if ((stop || due) && obstacle.empty()) {
+      const double t0 = MPI_Wtime();
+      write_checkpoint<D>(c, solver, recorder ? recorder->state() : RecorderState{},
+                          options.run_dir, options.comm);
+      if (rank == 0) {
+        std::printf("checkpoint at step %ld written in %.3f s\n", solver.steps(), MPI_Wtime() - t0);
+        std::fflush(stdout);
+      }
+    }
+    if (stop) {
+      if (rank == 0) {
+        if (obstacle.empty())
+          std::printf("stopped by a signal after step %ld: continue with --resume %s\n",
+                      solver.steps(), options.run_dir.c_str());
+        else
+          std::printf("stopped by a signal after step %ld, no checkpoint: %s\n", solver.steps(),
+                      obstacle.c_str());
+        std::fflush(stdout);
+      }
+      return false;
+    }
+    if (rank == 0 && solver.steps() == kill_at)
+      std::raise(SIGKILL);
   }
   if (recorder) {
     RunTotals totals;
@@ -55,11 +130,12 @@ void run_case(MpmCase& c, const RunOptions& options,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     recorder->finish(solver, totals);
   }
+  return true;
 }
 
-template void run_case<2>(MpmCase&, const RunOptions&,
+template bool run_case<2>(MpmCase&, const RunOptions&,
                           const std::function<void(const Solver<2>&)>&);
-template void run_case<3>(MpmCase&, const RunOptions&,
+template bool run_case<3>(MpmCase&, const RunOptions&,
                           const std::function<void(const Solver<3>&)>&);
 
 }  // namespace mpm_lig::mpm

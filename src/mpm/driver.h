@@ -15,6 +15,11 @@ struct RunOptions {
   std::string directory;
   int ranks = 1;               //!< MPI ranks of the run (for the summary)
   double prior_seconds = 0.0;  //!< wall time spent before run_case (material preparation)
+  //! Checkpoints (every case.checkpoint_every steps and on SIGTERM/SIGINT) go to
+  //! `run_dir/checkpoints` on every rank's behalf; empty: no checkpoints, no signal handling.
+  std::string run_dir;
+  bool resume = false;  //!< continue from the last checkpoint in run_dir
+  MPI_Comm comm = MPI_COMM_WORLD;
 };
 
 //! Collective over `comm`: every material's prepare() (DEM packings go to `work_dir`). Must
@@ -24,17 +29,21 @@ void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir);
 //! Runs a validated, prepared case: the gravity stage (if any), then the main stage until the
 //! end time or step count, with the Recorder's output when `options.directory` is not empty.
 //! `observer` (optional) sees the solver after every main-stage step: tests use it.
+//! Returns false if SIGTERM/SIGINT stopped the run (after writing a checkpoint).
+//!
+//! Test-only: with MPM_LIG_KILL_AT_STEP=n in the environment, rank 0 kills itself with SIGKILL
+//! after step n is recorded (the resume-identity test).
 template <int D>
-void run_case(MpmCase& c, const RunOptions& options,
+bool run_case(MpmCase& c, const RunOptions& options,
               const std::function<void(const Solver<D>&)>& observer = {});
 
 //! The same with `directory` only (serial runs, tests).
 template <int D>
-void run_case(MpmCase& c, const std::string& directory,
+bool run_case(MpmCase& c, const std::string& directory,
               const std::function<void(const Solver<D>&)>& observer = {}) {
   RunOptions options;
   options.directory = directory;
-  run_case<D>(c, options, observer);
+  return run_case<D>(c, options, observer);
 }
 
 //! Steps the main stage will take.

@@ -42,6 +42,12 @@ class RigidFooting {
   double load() const { return load_; }
   //! Horizontal reaction force (rough footings) [N].
   const Vec& reaction() const { return reaction_; }
+  //! For a resumed run: the state after a checkpointed step.
+  void restore(double settlement, double load, const Vec& reaction) {
+    settlement_ = settlement;
+    load_ = load;
+    reaction_ = reaction;
+  }
   //! Footprint area inside the mesh (its width in 2D) [m^(D-1)].
   double contact_area() const { return area_; }
 

@@ -1,6 +1,11 @@
 #include "mpm/recorder.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "io/checkpoint_file.h"
 
 #include "io/summary.h"
 #include "mpm/point_fields.h"
@@ -16,6 +21,27 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 std::string footing_prefix(std::size_t k) {
   return k == 0 ? "" : "footing" + std::to_string(k) + "_";
+}
+
+//! Keep the header and the first `rows` data rows of a CSV file.
+void truncate_rows(const std::string& filename, long rows) {
+  std::ifstream in(filename);
+  std::string kept, line;
+  for (long k = 0; k <= rows && std::getline(in, line); ++k)
+    kept += line + '\n';
+  in.close();
+  std::ofstream out(filename, std::ios::trunc);
+  out << kept;
+  if (!out.flush())
+    throw std::runtime_error("cannot rewrite '" + filename + "'");
+}
+
+//! DIR/history.csv, cut to the checkpoint's rows for a resumed run.
+std::string history_file(const std::string& directory, const RecorderState* resume) {
+  const std::string file = directory + "/history.csv";
+  if (resume)
+    truncate_rows(file, resume->history_rows);
+  return file;
 }
 
 }  // namespace
@@ -65,18 +91,32 @@ std::vector<double> Recorder<D>::history_row(const Solver<D>& solver) {
 
 template <int D>
 Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::string& directory,
-                      long total_steps)
+                      long total_steps, const RecorderState* resume)
     : directory_(directory),
       output_every_(c.output_every),
       history_every_(c.history_every),
       total_steps_(total_steps),
       material_ids_(c.material_ids),
-      history_(directory + "/history.csv", history_columns(c)),
+      history_(history_file(directory, resume), history_columns(c), resume != nullptr),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {
-  if (c.write_fields)
+  if (!resume) {
+    if (c.write_fields)
+      fields_ = std::make_unique<io::FieldWriter>(directory, "results");
+    after_step(solver);
+    return;
+  }
+  history_rows_ = resume->history_rows;
+  peak_q_ = resume->peak_q;
+  last_step_ = solver.steps();
+  if (c.write_fields) {
+    // The writer starts a new file: the steps up to the checkpoint are copied into it.
+    const std::string h5 = directory + "/results.h5", old = h5 + ".before_resume";
+    std::filesystem::rename(h5, old);
     fields_ = std::make_unique<io::FieldWriter>(directory, "results");
-  after_step(solver);
+    io::copy_steps_up_to(old, h5, solver.steps());
+    std::filesystem::remove(old);
+  }
 }
 
 template <int D>
@@ -85,8 +125,10 @@ void Recorder<D>::after_step(const Solver<D>& solver) {
   const long step = solver.steps();
   for (const auto& f : solver.footings())
     peak_q_ = std::max(peak_q_, f.load() / f.contact_area());
-  if (step % history_every_ == 0 || step == total_steps_)
+  if (step % history_every_ == 0 || step == total_steps_) {
     history_.write(history_row(solver));
+    ++history_rows_;
+  }
   if (step % output_every_ == 0 || step == total_steps_) {
     if (fields_)
       write_fields(solver);

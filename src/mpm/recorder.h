@@ -7,6 +7,7 @@
 
 #include "io/csv_history.h"
 #include "io/field_writer.h"
+#include "mpm/checkpoint.h"
 #include "mpm/solver.h"
 
 namespace mpm_lig::mpm {
@@ -27,8 +28,13 @@ materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::
 template <int D>
 class Recorder {
  public:
+  //! With `resume`, continues the files of a resumed run: history.csv is cut to the
+  //! checkpoint's rows, results.h5 loses the steps after it.
   Recorder(const MpmCase& c, const Solver<D>& solver, const std::string& directory,
-           long total_steps);
+           long total_steps, const RecorderState* resume = nullptr);
+
+  //! What a checkpoint saves.
+  RecorderState state() const { return {history_rows_, peak_q_}; }
 
   //! Called after every main-stage step (and once before the first).
   void after_step(const Solver<D>& solver);
@@ -54,6 +60,7 @@ class Recorder {
   double last_particle_steps_ = 0.0;
   double output_seconds_ = 0.0;
   double peak_q_ = 0.0;
+  long history_rows_ = 0;
 };
 
 }  // namespace mpm_lig::mpm

@@ -19,12 +19,18 @@ class MpmAnalysis final : public Analysis {
   void run(const RunContext& context) override {
     int rank = 0;
     MPI_Comm_rank(context.comm, &rank);
+    // A resumed run continues in its own folder.
+    const std::string dir = context.resume_dir.empty() ? context.output_dir : context.resume_dir;
     RunOptions options;
-    options.directory = rank == 0 ? context.output_dir : "";
+    options.directory = rank == 0 ? dir : "";
+    options.run_dir = dir;
+    options.resume = !context.resume_dir.empty();
+    options.comm = context.comm;
     MPI_Comm_size(context.comm, &options.ranks);
     const double start = MPI_Wtime();
-    prepare_materials(case_, context.comm, context.output_dir + "/packings");
+    prepare_materials(case_, context.comm, dir + "/packings");
     options.prior_seconds = MPI_Wtime() - start;
+    // A run stopped by a signal has written its checkpoint and said so: it ends normally.
     if (case_.dimension == 2)
       run_case<2>(case_, options);
     else

@@ -50,6 +50,14 @@ class Solver {
   const std::vector<Mat3>& increments() const { return increments_; }
   const std::vector<std::unique_ptr<materials::Material>>& materials() const { return materials_; }
 
+  //! For a resumed run: the state a checkpoint overwrites (then restore_clock).
+  Particles<D>& mutable_particles() { return particles_; }
+  std::vector<RigidFooting<D>>& mutable_footings() { return footings_; }
+  void restore_clock(double time, long steps) {
+    time_ = time;
+    steps_ = steps;
+  }
+
   double kinetic_energy() const;
   double total_mass() const;
   Vec total_momentum() const;

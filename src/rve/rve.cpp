@@ -111,6 +111,20 @@ void Rve::write_restart(const std::string& file) {
   engine_->command("run 0");
 }
 
+void Rve::write_checkpoint(const std::string& file) {
+  engine_->command("write_restart " + file);
+  // As in write_restart: the clone's first `run 0` re-evaluates the contacts (which advances
+  // the tangential history); so must the original, else it and the clone part at 1e-16.
+  engine_->command("run 0");
+}
+
+void Rve::restore(const State& s) {
+  rotation_ = s.rotation;
+  streaming_ = s.streaming;
+  particle_steps_ = s.particle_steps;
+  last_mean_stress_ = s.last_mean_stress;
+}
+
 int Rve::substeps_for(const Mat3& effective_increment) {
   const SubstepSpec& s = spec_.substeps;
   if (s.fixed > 0)

@@ -49,6 +49,20 @@ class Rve {
   //! Save the packing with its contact history (the rotation Q is not part of it).
   void write_restart(const std::string& file);
 
+  //! The state beyond the engine's restart file: rotation Q, streaming gradient, counters.
+  struct State {
+    Mat3 rotation = Mat3::Identity();
+    Mat3 streaming = Mat3::Zero();
+    double particle_steps = 0.0;
+    double last_mean_stress = 0.0;
+  };
+  //! Checkpoint of a running RVE: the engine restart (contact history and streaming velocities
+  //! kept) in `file`; with state() it continues bit-identically after from_restart + restore().
+  void write_checkpoint(const std::string& file);
+  State state() const { return {rotation_, streaming_, particle_steps_, last_mean_stress_}; }
+  //! Take the state a checkpoint saved (after from_restart of its restart file).
+  void restore(const State& s);
+
   //! Box matrix (columns a, b, c) in the RVE frame, and the rotation to the physical frame.
   Mat3 box_matrix() const;
   const Mat3& rotation() const { return rotation_; }

@@ -1,0 +1,90 @@
+#include "io/checkpoint_file.h"
+
+#include <stdexcept>
+
+#include "io/hdf5_handle.h"
+
+namespace mpm_lig::io {
+
+CheckpointFile::CheckpointFile(const std::string& filename, Mode mode) : filename_(filename) {
+  file_ = check(mode == Mode::create
+                    ? H5Fcreate(filename.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
+                    : H5Fopen(filename.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                "open '" + filename + "'");
+}
+
+CheckpointFile::~CheckpointFile() {
+  if (file_ >= 0)
+    H5Fclose(file_);
+}
+
+void CheckpointFile::write(const std::string& name, const std::vector<double>& values) {
+  const hsize_t size = values.size();
+  H5Space space(check(H5Screate_simple(1, &size, nullptr), "create a dataspace"));
+  H5Dataset set(check(H5Dcreate2(file_, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                                 H5P_DEFAULT, H5P_DEFAULT),
+                      "create '" + name + "' in '" + filename_ + "'"));
+  if (size > 0 &&
+      H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+    throw std::runtime_error("HDF5: cannot write '" + name + "' in '" + filename_ + "'");
+}
+
+std::vector<double> CheckpointFile::read(const std::string& name) const {
+  H5Dataset set(check(H5Dopen2(file_, name.c_str(), H5P_DEFAULT),
+                      "find '" + name + "' in '" + filename_ + "'"));
+  H5Space space(check(H5Dget_space(set.get()), "read the shape of '" + name + "'"));
+  const hssize_t size = H5Sget_simple_extent_npoints(space.get());
+  std::vector<double> values(static_cast<std::size_t>(size));
+  if (size > 0 &&
+      H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+    throw std::runtime_error("HDF5: cannot read '" + name + "' in '" + filename_ + "'");
+  return values;
+}
+
+void CheckpointFile::set(const std::string& name, double value) {
+  H5Space space(check(H5Screate(H5S_SCALAR), "create a dataspace"));
+  H5Attribute a(
+      check(H5Acreate2(file_, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+            "create attribute '" + name + "'"));
+  if (H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value) < 0)
+    throw std::runtime_error("HDF5: cannot write attribute '" + name + "'");
+}
+
+double CheckpointFile::get(const std::string& name) const {
+  H5Attribute a(check(H5Aopen(file_, name.c_str(), H5P_DEFAULT),
+                      "find attribute '" + name + "' in '" + filename_ + "'"));
+  double value = 0.0;
+  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &value) < 0)
+    throw std::runtime_error("HDF5: cannot read attribute '" + name + "'");
+  return value;
+}
+
+void CheckpointFile::close() {
+  const herr_t status = H5Fclose(file_);
+  file_ = -1;
+  if (status < 0)
+    throw std::runtime_error("HDF5: cannot close '" + filename_ + "'");
+}
+
+void copy_steps_up_to(const std::string& source, const std::string& target, long last_step) {
+  H5File in(check(H5Fopen(source.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open '" + source + "'"));
+  H5File out(check(H5Fcreate(target.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                   "create '" + target + "'"));
+  hsize_t count = 0;
+  H5Gget_num_objs(in.get(), &count);
+  for (hsize_t k = 0; k < count; ++k) {
+    char name[256];
+    H5Gget_objname_by_idx(in.get(), k, name, sizeof name);
+    H5Attribute a(check(H5Aopen_by_name(in.get(), name, "step", H5P_DEFAULT, H5P_DEFAULT),
+                        "read the step of '" + std::string(name) + "'"));
+    long long step = 0;
+    H5Aread(a.get(), H5T_NATIVE_LLONG, &step);
+    if (step <= last_step)
+      check(H5Ocopy(in.get(), name, out.get(), name, H5P_DEFAULT, H5P_DEFAULT),
+            "copy '" + std::string(name) + "'");
+  }
+  if (!out.reset())
+    throw std::runtime_error("HDF5: cannot close '" + target + "'");
+}
+
+}  // namespace mpm_lig::io

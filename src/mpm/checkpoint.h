@@ -1,0 +1,43 @@
+#pragma once
+
+#include <string>
+
+#include <mpi.h>
+
+#include "mpm/case_spec.h"
+#include "mpm/solver.h"
+
+namespace mpm_lig::mpm {
+
+//! What the Recorder must know to continue its files after a resume.
+struct RecorderState {
+  long history_rows = 0;  //!< data rows of history.csv (header excluded)
+  double peak_q = 0.0;
+};
+
+//! Checkpoints of a run in `run_dir/checkpoints/`:
+//!
+//!     step_<n>/mpm.h5          particle arrays (exact doubles), clock, footings, recorder
+//!                              state, each dem_rve material's per-point rows (attributes and
+//!                              datasets named m<id>_...)
+//!     step_<n>/m<id>/point_<i>.restart   every RVE's engine restart (contact history kept)
+//!     latest                   text: the name of the last complete step folder
+//!
+//! `latest` is replaced atomically (rename) after all ranks finished writing; the previous
+//! step folder is removed only then, so a kill at any moment leaves one complete checkpoint.
+//! Materials other than dem_rve must have no state beyond their stress (elastic).
+template <int D>
+void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderState& recorder,
+                      const std::string& run_dir, MPI_Comm comm);
+
+//! Collective: overwrite a freshly built solver (and its materials) with the last checkpoint
+//! of `run_dir`. Returns the recorder state saved with it.
+template <int D>
+RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::string& run_dir,
+                              MPI_Comm comm);
+
+//! Why the solver's materials cannot be checkpointed (state beyond their stress), or "".
+template <int D>
+std::string checkpoint_obstacle(const Solver<D>& solver);
+
+}  // namespace mpm_lig::mpm
