@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "io/checkpoint_file.h"
+#include "io/field_index.h"
 #include "io/hdf5_handle.h"
 
 namespace mpm_lig::io {
@@ -76,6 +78,19 @@ FieldWriter::FieldWriter(const std::string& directory, const std::string& basena
   H5File file(check(H5Fcreate(h5_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                     "create '" + h5_path_ + "'"));
   replace_file(xdmf_path_, xdmf_text(h5_name_, steps_));
+}
+
+std::unique_ptr<FieldWriter> FieldWriter::resume(const std::string& directory,
+                                                 const std::string& basename, long last_step) {
+  const std::filesystem::path earlier = std::filesystem::path(directory) / (basename + ".h5");
+  const std::filesystem::path kept = earlier.string() + ".before_resume";
+  std::filesystem::rename(earlier, kept);
+  auto writer = std::make_unique<FieldWriter>(directory, basename);
+  copy_steps_up_to(kept.string(), writer->h5_path_, last_step);
+  std::filesystem::remove(kept);
+  writer->steps_ = read_field_steps(writer->h5_path_);
+  replace_file(writer->xdmf_path_, xdmf_text(writer->h5_name_, writer->steps_));
+  return writer;
 }
 
 FieldWriter::~FieldWriter() = default;

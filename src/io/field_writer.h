@@ -31,6 +31,10 @@ class FieldWriter {
  public:
   //! Creates `directory` if needed and starts an empty `<basename>.h5` (an older one is replaced).
   FieldWriter(const std::string& directory, const std::string& basename = "results");
+  //! Continue the fields of an earlier run in `directory`: its steps up to `last_step` are
+  //! kept (later ones dropped) and stay in the XDMF index with the new ones.
+  static std::unique_ptr<FieldWriter> resume(const std::string& directory,
+                                             const std::string& basename, long last_step);
   ~FieldWriter();
   FieldWriter(const FieldWriter&) = delete;
   FieldWriter& operator=(const FieldWriter&) = delete;

@@ -221,6 +221,45 @@ TEST(FieldWriter, AKilledRunKeepsItsCompletedSteps) {
   EXPECT_EQ(xml.find("step_000002"), std::string::npos);
 }
 
+TEST(FieldWriter, ResumeKeepsEarlierStepsInTheIndex) {
+  const std::string dir = output_dir("resume");
+  const std::vector<Vec3> pos = {{0, 0, 0}, {1, 0, 0}};
+  auto write_step = [&](FieldWriter& writer, long step, double volume) {
+    writer.begin_step(step, 1e-3 * step, pos);
+    writer.add_scalar("volume", {volume, volume});
+    writer.add_vector("velocity", std::vector<Vec3>(2, Vec3(1, 2, 3)));
+    writer.add_tensor("strain", std::vector<Mat3>(2, Mat3::Identity()));
+    writer.add_int("material", {0, 1});
+    writer.end_step();
+  };
+  {
+    FieldWriter first(dir, "fields");
+    for (long step : {0L, 10L, 20L})
+      write_step(first, step, 1.0);
+  }
+  // A run resumed from its step-10 checkpoint writes step 20 again.
+  auto resumed = FieldWriter::resume(dir, "fields", 10);
+  EXPECT_EQ(resumed->steps_written(), 2u);
+  write_step(*resumed, 20, 2.0);
+
+  const std::string xml = read_text(dir + "/fields.xdmf");
+  std::string problem;
+  EXPECT_TRUE(tags_balanced(xml, problem)) << problem;
+  for (const char* group : {"step_000000", "step_000010", "step_000020"}) {
+    EXPECT_NE(xml.find(std::string("<Grid Name=\"") + group), std::string::npos) << group;
+  }
+  H5Reader h5(dir + "/fields.h5");
+  ASSERT_TRUE(h5.ok());
+  EXPECT_EQ(h5.read<double>("/step_000020/volume", H5T_NATIVE_DOUBLE), std::vector<double>(2, 2.0));
+  const std::regex ref(R"(fields\.h5:(/[^<]+)<)");
+  int references = 0;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), ref); it != std::sregex_iterator();
+       ++it, ++references)
+    EXPECT_TRUE(h5.exists((*it)[1])) << (*it)[1];
+  // Per step: positions, volume, velocity, material, and 6 tensor columns.
+  EXPECT_EQ(references, 3 * (1 + 1 + 1 + 1 + 6));
+}
+
 TEST(FieldWriter, MisuseIsReported) {
   FieldWriter writer(output_dir("misuse"));
   EXPECT_THROW(writer.add_scalar("a", {}), std::logic_error);
