@@ -1,0 +1,210 @@
+#!/usr/bin/python3
+"""Project the cost of an mpm_lig run with dem_rve materials from short measured runs.
+
+    tools/cost_projection.py TARGET.json --run OUT_DIR [CASE.json] [--run ...] [--json FILE]
+
+Each measured run directory holds the `summary.json` that mpm_lig writes (wall_seconds,
+dem_particle_steps, rve_count, ranks, mpm_steps, time_split). The case file of a measured run is
+optional; with it the tool also reports the mean DEM sub-steps per RVE and MPM step, which the
+projection needs unless --substeps gives them.
+
+Projected core-seconds = RVEs x grains x sub-steps x MPM steps / (particle-steps/s per core),
+where the rate per core counts the stepping phase only (wall time minus packing preparation and
+output), so load imbalance between ranks is included. Preparation is reported separately.
+Exit code 2 on a missing file or key (named in the message).
+"""
+
+import argparse
+import json
+import math
+import sys
+
+
+class InputError(Exception):
+    pass
+
+
+def load_json(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except OSError as e:
+        raise InputError(f"cannot read {path}: {e.strerror}")
+    except json.JSONDecodeError as e:
+        raise InputError(f"{path}: not JSON ({e})")
+
+
+def need(node, key, where):
+    if key not in node:
+        raise InputError(f"{where}: missing key '{key}'")
+    return node[key]
+
+
+def dem_materials(case, where):
+    mats = [m for m in need(case, "materials", where) if m.get("type") == "dem_rve"]
+    if not mats:
+        raise InputError(f"{where}: no material of type dem_rve")
+    return {m["id"]: m for m in mats}
+
+
+def cell_size(case, where):
+    mesh = need(case, "mesh", where)
+    size, cells = need(mesh, "size", where + ": mesh"), need(mesh, "cells", where + ": mesh")
+    return [s / n for s, n in zip(size, cells)]
+
+
+def case_rves(case, where):
+    """Material points of dem_rve bodies and their grains: [(points, grains), ...]."""
+    mats = dem_materials(case, where)
+    h = cell_size(case, where)
+    out = []
+    for i, body in enumerate(need(case, "bodies", where)):
+        if body.get("material") not in mats:
+            continue
+        box = need(body, "box", f"{where}: bodies[{i}]")
+        ppc = body.get("points_per_cell", 2)
+        points = 1
+        for lo, hi, hk in zip(box["min"], box["max"], h):
+            points *= round((hi - lo) / hk) * ppc
+        rve = need(mats[body["material"]], "rve", f"{where}: materials")
+        out.append((points, need(rve, "grains", f"{where}: materials[].rve")))
+    if not out:
+        raise InputError(f"{where}: no body made of a dem_rve material")
+    return out
+
+
+def measure(run_dir, case_path):
+    where = f"{run_dir}/summary.json"
+    s = load_json(where)
+    wall = need(s, "wall_seconds", where)
+    ranks = need(s, "ranks", where)
+    psteps = need(s, "dem_particle_steps", where)
+    rves = need(s, "rve_count", where)
+    steps = need(s, "mpm_steps", where) + s.get("gravity_stage_steps", 0)
+    split = need(s, "time_split", where)
+    prep = need(split, "preparation", where + ": time_split")
+    stepping = wall - prep - split.get("output", 0.0)
+    if stepping <= 0 or steps <= 0 or rves <= 0:
+        raise InputError(f"{where}: no stepping measured (wall {wall} s, {steps} steps)")
+    m = {
+        "run": run_dir,
+        "ranks": ranks,
+        "rve_count": rves,
+        "mpm_steps": steps,
+        "wall_seconds": wall,
+        "preparation_seconds": prep,
+        "dem_share_of_stepping": split.get("dem", 0.0) / stepping,
+        "particle_steps_per_s_per_core": psteps / (ranks * stepping),
+        "core_seconds_per_mpm_step_per_rve": ranks * stepping / (steps * rves),
+    }
+    if case_path:
+        case = load_json(case_path)
+        grains = [g for _, g in case_rves(case, case_path)]
+        if len(set(grains)) == 1:
+            m["grains"] = grains[0]
+            m["mean_substeps"] = psteps / (rves * grains[0] * steps)
+        m["time_step"] = s.get("time_step")
+        m["cell_size"] = min(cell_size(case, case_path))
+    return m
+
+
+def target_steps(case, path, runs, notes):
+    end = need(need(case, "analysis", path), "end", path + ": analysis")
+    gravity = case["analysis"].get("gravity_stage", {}).get("steps", 0)
+    if "steps" in end:
+        return end["steps"] + gravity
+    t_end = need(end, "time", path + ": analysis.end")
+    ref = next((r for r in runs if r.get("time_step") and r.get("cell_size")), None)
+    if ref is None:
+        raise InputError(f"{path}: analysis.end is a time; give --time-step or a measured run "
+                         "with its case file (its CFL time step is scaled by the cell size)")
+    dt = ref["time_step"] * min(cell_size(case, path)) / ref["cell_size"]
+    notes.append(f"MPM time step {dt:.4g} s: CFL step {ref['time_step']:.4g} s of {ref['run']} "
+                 f"scaled by the cell size (same material stiffness and density assumed)")
+    return math.ceil(t_end / dt) + gravity
+
+
+def project(runs, target_path, substeps=None, time_step=None, rate=None):
+    case = load_json(target_path)
+    notes = []
+    rves = case_rves(case, target_path)
+    if time_step:
+        end = case["analysis"]["end"]
+        steps = end.get("steps") or math.ceil(end["time"] / time_step)
+        notes.append(f"MPM time step {time_step:.4g} s (given)")
+    else:
+        steps = target_steps(case, target_path, runs, notes)
+    if rate is None:
+        rate = min(r["particle_steps_per_s_per_core"] for r in runs)
+        notes.append(f"rate {rate:.4g} particle-steps/s per core: the slowest measured run "
+                     "(stepping phase, load imbalance included)")
+    else:
+        notes.append(f"rate {rate:.4g} particle-steps/s per core (given)")
+    if substeps is None:
+        known = [r["mean_substeps"] for r in runs if "mean_substeps" in r]
+        if not known:
+            raise InputError("no measured run with its case file: give --substeps")
+        substeps = max(known)
+        notes.append(f"{substeps:.4g} DEM sub-steps per RVE and MPM step: the largest mean measured "
+                     "(inertial-number control: it grows with the strain rate per step)")
+    else:
+        notes.append(f"{substeps:.4g} DEM sub-steps per RVE and MPM step (given)")
+    particle_steps_per_mpm_step = sum(p * g for p, g in rves) * substeps
+    core_s_per_step = particle_steps_per_mpm_step / rate
+    rve_count = sum(p for p, _ in rves)
+    return {
+        "target": target_path,
+        "rve_count": rve_count,
+        "grains": sorted({g for _, g in rves}),
+        "mpm_steps": steps,
+        "substeps": substeps,
+        "particle_steps_per_s_per_core": rate,
+        "core_seconds_per_mpm_step": core_s_per_step,
+        "core_seconds_per_mpm_step_per_rve": core_s_per_step / rve_count,
+        "core_hours": core_s_per_step * steps / 3600.0,
+        "assumptions": notes,
+    }
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--run", nargs="+", action="append", required=True, metavar="DIR [CASE]",
+                   help="a measured run's output directory, optionally followed by its case file")
+    p.add_argument("target", help="case file of the run to project")
+    p.add_argument("--substeps", type=float, help="DEM sub-steps per RVE and MPM step")
+    p.add_argument("--time-step", type=float, help="MPM time step of the target [s]")
+    p.add_argument("--rate", type=float, help="particle-steps/s per core to assume")
+    p.add_argument("--json", help="write the result to this file")
+    a = p.parse_args(argv)
+    try:
+        if any(len(r) > 2 for r in a.run):
+            raise InputError("--run takes a directory and at most one case file")
+        runs = [measure(r[0], r[1] if len(r) > 1 else None) for r in a.run]
+        result = {"measured": runs,
+                  "projection": project(runs, a.target, a.substeps, a.time_step, a.rate)}
+    except InputError as e:
+        print(f"cost_projection: {e}", file=sys.stderr)
+        return 2
+    for r in runs:
+        line = (f"{r['run']}: {r['rve_count']} RVEs, {r['mpm_steps']} steps, {r['ranks']} ranks, "
+                f"{r['particle_steps_per_s_per_core']:.4g} particle-steps/s per core, "
+                f"{r['core_seconds_per_mpm_step_per_rve']:.4g} core-s per MPM step per RVE, "
+                f"DEM {100 * r['dem_share_of_stepping']:.0f} % of stepping")
+        if "mean_substeps" in r:
+            line += f", mean sub-steps {r['mean_substeps']:.4g}"
+        print(line)
+    pr = result["projection"]
+    print(f"target {pr['target']}: {pr['rve_count']} RVEs x {pr['grains']} grains x "
+          f"{pr['substeps']:.4g} sub-steps x {pr['mpm_steps']} MPM steps")
+    print(f"  {pr['core_seconds_per_mpm_step']:.4g} core-s per MPM step, "
+          f"{pr['core_hours']:.4g} core-hours (packing preparation not included)")
+    for n in pr["assumptions"]:
+        print(f"  assumes {n}")
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(result, f, indent=2)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
