@@ -123,6 +123,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "mpm_lig: %s: %s\n", cl->case_file.c_str(), e.what());
     return mpm_lig::kExitBadCase;
   }
+  if (!cl->resume_dir.empty() && !analysis->supports_resume()) {
+    if (root_rank)
+      std::fprintf(stderr, "mpm_lig: --resume: this analysis type writes no checkpoints\n");
+    return mpm_lig::kExitBadCase;
+  }
   if (cl->validate_only) {
     if (root_rank)
       std::printf("%s: valid\n", cl->case_file.c_str());
@@ -131,7 +136,9 @@ int main(int argc, char** argv) {
 
   mpm_lig::RunContext context;
   context.case_file = cl->case_file;
-  context.output_dir = cl->output_dir.empty() ? default_output_dir(cl->case_file) : cl->output_dir;
+  // A resumed run continues in the folder it resumes from unless told otherwise.
+  const std::string& chosen = cl->output_dir.empty() ? cl->resume_dir : cl->output_dir;
+  context.output_dir = chosen.empty() ? default_output_dir(cl->case_file) : chosen;
   context.resume_dir = cl->resume_dir;
   try {
     if (root_rank)

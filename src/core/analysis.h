@@ -25,6 +25,8 @@ class Analysis {
  public:
   virtual ~Analysis() = default;
   virtual void run(const RunContext& context) = 0;
+  //! Whether run() can continue from a checkpoint folder (RunContext::resume_dir).
+  virtual bool supports_resume() const { return false; }
 };
 
 //! Factories get the case root; they must read every key they accept.

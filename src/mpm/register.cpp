@@ -16,6 +16,8 @@ class MpmAnalysis final : public Analysis {
  public:
   explicit MpmAnalysis(MpmCase c) : case_(std::move(c)) {}
 
+  bool supports_resume() const override { return true; }
+
   void run(const RunContext& context) override {
     int rank = 0;
     MPI_Comm_rank(context.comm, &rank);
