@@ -269,6 +269,30 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
   }
 }
 
+//! output.simple_shear: {"material": id, "boundary_condition": k}, k a velocity constraint
+//! with a periodic time function (its period counts the cycles).
+void read_simple_shear(const CaseNode& o, MpmCase& c) {
+  if (!o.has("simple_shear"))
+    return;
+  const CaseNode s = o.child("simple_shear");
+  SimpleShearOutput& out = c.simple_shear;
+  out.enabled = true;
+  out.material = material_index(s, "material", c);
+  if (std::none_of(c.bodies.begin(), c.bodies.end(),
+                   [&](const Body& b) { return b.material == out.material; }))
+    s.fail("material", "no body is made of this material");
+  const int index = s.get<int>("boundary_condition");
+  const auto driver = std::find_if(c.constraints.begin(), c.constraints.end(),
+                                   [&](const Constraint& k) { return k.case_index == index; });
+  if (driver == c.constraints.end() || driver->type != Constraint::Type::velocity)
+    s.fail("boundary_condition", "must be the index of a \"velocity\" boundary condition");
+  const TimeFunction::Kind kind = driver->function.kind;
+  if (kind == TimeFunction::Kind::constant || kind == TimeFunction::Kind::ramp)
+    s.fail("boundary_condition",
+           "its function must be periodic (triangular, square or sine) to count cycles");
+  out.period = driver->function.time;
+}
+
 void read_output(const CaseNode& root, MpmCase& c) {
   if (!root.has("output"))
     return;
@@ -278,6 +302,7 @@ void read_output(const CaseNode& root, MpmCase& c) {
   if ((c.history_every = o.get_or<long>("history_every", 1)) < 1)
     o.fail("history_every", "must be >= 1");
   c.write_fields = o.get_or<bool>("fields", true);
+  read_simple_shear(o, c);
   if ((c.checkpoint_every = o.get_or<long>("checkpoint_every", 0)) < 0)
     o.fail("checkpoint_every", "must be >= 0 (0: checkpoints on SIGTERM/SIGINT only)");
   for (const auto& m : c.materials) {

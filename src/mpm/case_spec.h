@@ -66,6 +66,14 @@ struct Body {
   double profile_start = 0.0, profile_length = 1.0;
 };
 
+//! History columns of a simple-shear run (output.simple_shear): averages over one material's
+//! points and the cycle count of the velocity constraint that drives it.
+struct SimpleShearOutput {
+  bool enabled = false;
+  int material = 0;     //!< index into MpmCase::materials
+  double period = 0.0;  //!< period of the driving constraint's time function [s]
+};
+
 //! Everything an MPM run needs, validated; dimension-independent plain data.
 struct MpmCase {
   std::string title;
@@ -103,6 +111,7 @@ struct MpmCase {
   long history_every = 1;
   long checkpoint_every = 0;  //!< main-stage steps between checkpoints; 0: only on SIGTERM
   bool write_fields = true;
+  SimpleShearOutput simple_shear;
 };
 
 //! Read and validate the whole case (everything but "title" and "analysis.type", which the

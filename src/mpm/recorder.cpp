@@ -1,5 +1,7 @@
 #include "mpm/recorder.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -44,6 +46,33 @@ std::string history_file(const std::string& directory, const RecorderState* resu
   return file;
 }
 
+//! Simple-shear columns from the points of material `shear.material`: the cycle (1, 2, ...)
+//! of the driving function the time lies in (a row at the end of a cycle belongs to it), the
+//! engineering shear strain γ = F_xy averaged over the initial volumes (for simple shear the
+//! top displacement over the height), τ = σ_xy and p' = −(σ_xx + σ_yy)/2 of the
+//! volume-averaged Cauchy stress (τ > 0 for γ > 0, p' compression positive).
+template <int D>
+void append_simple_shear(const Solver<D>& solver, const SimpleShearOutput& shear,
+                         std::vector<double>& row) {
+  const Particles<D>& p = solver.particles();
+  double v0 = 0.0, v = 0.0, gamma = 0.0;
+  Mat3 stress = Mat3::Zero();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.material[k] != shear.material)
+      continue;
+    v0 += p.volume0[k];
+    gamma += p.volume0[k] * p.deformation[k](0, 1);
+    v += p.volume[k];
+    stress += p.volume[k] * p.stress[k];
+  }
+  stress /= v;
+  const double cycles = solver.time() / shear.period;
+  row.push_back(std::max(1.0, std::ceil(cycles - 1e-6)));
+  row.push_back(gamma / v0);
+  row.push_back(stress(0, 1));
+  row.push_back(-0.5 * (stress(0, 0) + stress(1, 1)));
+}
+
 }  // namespace
 
 materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::Material>>& m) {
@@ -70,11 +99,16 @@ std::vector<std::string> Recorder<D>::history_columns(const MpmCase& c) {
     for (int d = 0; d < D; ++d)
       columns.push_back("bc" + std::to_string(bc.case_index) + "_f" + kAxisNames[d]);
   }
+  if (c.simple_shear.enabled) {
+    for (const char* name : {"cycle", "shear_strain", "shear_stress", "mean_stress"})
+      columns.push_back(name);
+  }
   return columns;
 }
 
 template <int D>
-std::vector<double> Recorder<D>::history_row(const Solver<D>& solver) {
+std::vector<double> Recorder<D>::history_row(const Solver<D>& solver,
+                                             const SimpleShearOutput& shear) {
   std::vector<double> row = {static_cast<double>(solver.steps()), solver.time(),
                              solver.kinetic_energy()};
   for (const auto& f : solver.footings()) {
@@ -86,6 +120,8 @@ std::vector<double> Recorder<D>::history_row(const Solver<D>& solver) {
     for (int d = 0; d < D; ++d)
       row.push_back(solver.constraints().reaction(k)[d]);
   }
+  if (shear.enabled)
+    append_simple_shear(solver, shear, row);
   return row;
 }
 
@@ -97,6 +133,7 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
       history_every_(c.history_every),
       total_steps_(total_steps),
       material_ids_(c.material_ids),
+      simple_shear_(c.simple_shear),
       history_(history_file(directory, resume), history_columns(c), resume != nullptr),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {
@@ -126,7 +163,7 @@ void Recorder<D>::after_step(const Solver<D>& solver) {
   for (const auto& f : solver.footings())
     peak_q_ = std::max(peak_q_, f.load() / f.contact_area());
   if (step % history_every_ == 0 || step == total_steps_) {
-    history_.write(history_row(solver));
+    history_.write(history_row(solver, simple_shear_));
     ++history_rows_;
   }
   if (step % output_every_ == 0 || step == total_steps_) {

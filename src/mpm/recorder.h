@@ -44,7 +44,8 @@ class Recorder {
   //! Column names of history.csv.
   static std::vector<std::string> history_columns(const MpmCase& c);
   //! One row of history.csv for the solver's current state.
-  static std::vector<double> history_row(const Solver<D>& solver);
+  static std::vector<double> history_row(const Solver<D>& solver,
+                                         const SimpleShearOutput& shear = {});
 
  private:
   void write_fields(const Solver<D>& solver);
@@ -53,6 +54,7 @@ class Recorder {
   std::string directory_;
   long output_every_, history_every_, total_steps_;
   std::vector<int> material_ids_;
+  SimpleShearOutput simple_shear_;
   io::CsvHistory history_;
   std::unique_ptr<io::FieldWriter> fields_;
   std::chrono::steady_clock::time_point start_, last_;

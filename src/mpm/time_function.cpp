@@ -4,9 +4,24 @@
 #include <cmath>
 
 namespace mpm_lig::mpm {
+namespace {
+
+//! t / period modulo 1. A time within round-off of a quarter period counts as exactly that
+//! quarter: with a time step that divides T/4, t = n dt carries round-off, and a square wave
+//! would otherwise switch one step late now and then, so the triangular displacement of
+//! cyclic shear would drift by two steps' worth per slip.
+double phase_of(double t, double period) {
+  double x = t / period;
+  const double quarters = std::round(4.0 * x);
+  if (std::abs(4.0 * x - quarters) <= 1e-9 * std::max(1.0, std::abs(quarters)))
+    x = 0.25 * quarters;
+  return x - std::floor(x);
+}
+
+}  // namespace
 
 double TimeFunction::at(double t) const {
-  const double phase = t / time - std::floor(t / time);  // in [0, 1)
+  const double phase = phase_of(t, time);  // in [0, 1)
   switch (kind) {
     case Kind::constant:
       return 1.0;

@@ -48,5 +48,22 @@ TEST(TimeFunction, SquareVelocityGivesTriangularDisplacementAboutZero) {
   EXPECT_NEAR(bottom, -0.25, 1e-9);
 }
 
+TEST(TimeFunction, SquareSwitchesOnTimeWhenTheStepDividesAQuarterPeriod) {
+  // Evaluated at accumulated step starts t += dt (round-off in t), as the solver does:
+  // the displacement must hit +-T/4 exactly and not drift over many periods.
+  const auto square = make(TimeFunction::Kind::square, 0.04);
+  const double dt = 2e-4;  // 50 steps per quarter period
+  double t = 0.0, u = 0.0, top = 0.0, bottom = 0.0;
+  for (int k = 0; k < 200 * 30; ++k) {
+    u += square.at(t) * dt;
+    t += dt;
+    top = std::max(top, u);
+    bottom = std::min(bottom, u);
+  }
+  EXPECT_NEAR(u, 0.0, 1e-12);
+  EXPECT_NEAR(top, 0.01, 1e-12);
+  EXPECT_NEAR(bottom, -0.01, 1e-12);
+}
+
 }  // namespace
 }  // namespace mpm_lig::mpm
