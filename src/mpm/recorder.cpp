@@ -3,11 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <stdexcept>
-
-#include "io/checkpoint_file.h"
 
 #include "io/summary.h"
 #include "mpm/point_fields.h"
@@ -146,14 +143,8 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
   history_rows_ = resume->history_rows;
   peak_q_ = resume->peak_q;
   last_step_ = solver.steps();
-  if (c.write_fields) {
-    // The writer starts a new file: the steps up to the checkpoint are copied into it.
-    const std::string h5 = directory + "/results.h5", old = h5 + ".before_resume";
-    std::filesystem::rename(h5, old);
-    fields_ = std::make_unique<io::FieldWriter>(directory, "results");
-    io::copy_steps_up_to(old, h5, solver.steps());
-    std::filesystem::remove(old);
-  }
+  if (c.write_fields)
+    fields_ = io::FieldWriter::resume(directory, "results", solver.steps());
 }
 
 template <int D>

@@ -25,3 +25,10 @@ echo "killed run: checkpoint $(cat "$work/resumed/checkpoints/latest"), \
 $(($(wc -l < "$work/resumed/history.csv") - 1)) history rows"
 "$@" "$exe" "$work/case.json" --resume "$work/resumed"
 /usr/bin/python3 "$here/compare_runs.py" "$work/reference" "$work/resumed"
+# ParaView sees every output step of the resumed run, those before the checkpoint included.
+steps() { grep -o '<Grid Name="step_[0-9]*"' "$1/results.xdmf" | sort; }
+if [ "$(steps "$work/reference")" != "$(steps "$work/resumed")" ]; then
+  echo "results.xdmf of the resumed run lists other steps than the reference:"
+  steps "$work/resumed"; exit 1
+fi
+echo "results.xdmf lists the same $(steps "$work/reference" | wc -l) steps"
