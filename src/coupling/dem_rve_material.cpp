@@ -89,7 +89,7 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   // The packings are spread over the rank groups like RVEs are.
   RveLayout layout(comm_, ranks_per_rve_, static_cast<std::size_t>(packing_count_));
   std::vector<double> owned;
-  for (std::size_t k = layout.first(); k < layout.last(); ++k) {
+  for (const std::size_t k : layout.owned()) {
     const std::string label = path_ + " packing " + std::to_string(k);
     std::unique_ptr<rve::Rve> rve;
     if (spec_.restart_file.empty()) {
@@ -159,7 +159,7 @@ void DemRveMaterial::create_rves() {
   substeps_.assign(points_, 0.0);
   for (std::size_t p = 0; p < points_; ++p)
     stress_[p] = initial_stress(p);
-  for (std::size_t p = layout_->first(); p < layout_->last(); ++p) {
+  for (const std::size_t p : layout_->owned()) {
     rves_.push_back(rve::Rve::from_restart(spec_, packings_[packing_of(p)].restart_file,
                                            layout_->group_comm(), point_label(p)));
   }
@@ -179,8 +179,8 @@ void DemRveMaterial::inject_fault_if_asked(std::size_t point, rve::Rve& rve) con
 void DemRveMaterial::deform_owned(const std::vector<long>& batch_index, const std::vector<Mat3>& dF,
                                   std::vector<Mat3>& owned_stress,
                                   std::vector<double>& owned_steps) {
-  for (std::size_t p = layout_->first(); p < layout_->last(); ++p) {
-    rve::Rve& rve = *rves_[p - layout_->first()];
+  for (const std::size_t p : layout_->owned()) {
+    rve::Rve& rve = *rves_[layout_->local_index(p)];
     double steps = 0.0;
     if (batch_index[p] >= 0) {
       inject_fault_if_asked(p, rve);
@@ -241,8 +241,8 @@ std::vector<double> DemRveMaterial::write_checkpoint(const std::string& dir) {
   if (!layout_)
     throw std::logic_error(path_ + ": checkpoint before the first update");
   std::vector<double> owned;
-  for (std::size_t p = layout_->first(); p < layout_->last(); ++p) {
-    rve::Rve& rve = *rves_[p - layout_->first()];
+  for (const std::size_t p : layout_->owned()) {
+    rve::Rve& rve = *rves_[layout_->local_index(p)];
     rve.write_checkpoint(checkpoint_file(dir, p));
     const rve::Rve::State s = rve.state();
     owned.insert(owned.end(), stress_[p].data(), stress_[p].data() + 9);
@@ -270,7 +270,7 @@ void DemRveMaterial::restore_checkpoint(const std::string& dir, const std::vecto
     const double* row = rows.data() + p * kCheckpointValues;
     stress_[p] = Eigen::Map<const Mat3>(row);
     substeps_[p] = row[9];
-    if (p < layout_->first() || p >= layout_->last())
+    if (!layout_->owns(p))
       continue;
     rves_.push_back(rve::Rve::from_restart(spec_, checkpoint_file(dir, p), layout_->group_comm(),
                                            point_label(p)));

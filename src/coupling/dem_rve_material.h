@@ -85,7 +85,7 @@ class DemRveMaterial final : public materials::Material {
   std::vector<Packing> packings_;
   std::size_t points_ = 0;
   std::unique_ptr<RveLayout> layout_;
-  std::vector<std::unique_ptr<rve::Rve>> rves_;  //!< the owned block, index - layout.first()
+  std::vector<std::unique_ptr<rve::Rve>> rves_;  //!< the owned RVEs, by layout.local_index()
   std::vector<Mat3> stress_;                     //!< every point's last stress (all ranks)
   std::vector<double> substeps_;                 //!< every point's last DEM step count
   long updates_ = 0;

@@ -1,5 +1,6 @@
 #include "coupling/rve_layout.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -18,6 +19,7 @@ RveLayout::RveLayout(MPI_Comm world, int ranks_per_rve, std::size_t rve_count)
   group_ = world_rank_ / ranks_per_rve;
   MPI_Comm_split(world, group_, world_rank_, &group_comm_);
   MPI_Comm_rank(group_comm_, &group_rank_);
+  owned_ = owned(group_);
 }
 
 RveLayout::~RveLayout() {
@@ -27,42 +29,54 @@ RveLayout::~RveLayout() {
     MPI_Comm_free(&group_comm_);
 }
 
-std::size_t RveLayout::first(int group) const {
-  return rve_count_ * static_cast<std::size_t>(group) / static_cast<std::size_t>(groups_);
-}
-
-std::size_t RveLayout::last(int group) const {
-  return first(group + 1);
+std::vector<std::size_t> RveLayout::owned(int group) const {
+  std::vector<std::size_t> rves;
+  for (std::size_t r = static_cast<std::size_t>(group); r < rve_count_;
+       r += static_cast<std::size_t>(groups_))
+    rves.push_back(r);
+  return rves;
 }
 
 int RveLayout::owner(std::size_t rve) const {
-  for (int g = 0; g < groups_; ++g) {
-    if (rve < last(g))
-      return g;
-  }
-  throw std::out_of_range("RVE index " + std::to_string(rve) + " out of range");
+  if (rve >= rve_count_)
+    throw std::out_of_range("RVE index " + std::to_string(rve) + " out of range");
+  return static_cast<int>(rve % static_cast<std::size_t>(groups_));
 }
 
-std::vector<double> RveLayout::gather(const std::vector<double>& owned, int width) const {
-  const std::size_t mine = (last() - first()) * static_cast<std::size_t>(width);
-  if (owned.size() != mine) {
-    throw std::invalid_argument("RveLayout::gather: " + std::to_string(owned.size()) +
-                                " values for " + std::to_string(mine) + " expected");
+std::size_t RveLayout::local_index(std::size_t rve) const {
+  if (!owns(rve))
+    throw std::logic_error("RVE " + std::to_string(rve) + " is not owned by group " +
+                           std::to_string(group_));
+  return rve / static_cast<std::size_t>(groups_);
+}
+
+std::vector<double> RveLayout::gather(const std::vector<double>& owned_values, int width) const {
+  const std::size_t w = static_cast<std::size_t>(width);
+  if (owned_values.size() != owned_.size() * w) {
+    throw std::invalid_argument("RveLayout::gather: " + std::to_string(owned_values.size()) +
+                                " values for " + std::to_string(owned_.size() * w) + " expected");
   }
-  // Only group leaders contribute, so each RVE's values appear exactly once, in rank order,
-  // which is RVE order because groups own consecutive blocks.
+  // Only group leaders contribute, so each RVE's values appear exactly once: group by group,
+  // in rank order. They are then dealt back into RVE order.
   std::vector<int> counts(world_size_, 0), offsets(world_size_, 0);
-  for (int r = 0; r < world_size_; ++r) {
-    if (r % ranks_per_rve_ != 0)
-      continue;
-    const int g = r / ranks_per_rve_;
-    counts[r] = static_cast<int>((last(g) - first(g)) * static_cast<std::size_t>(width));
-    offsets[r] = static_cast<int>(first(g) * static_cast<std::size_t>(width));
+  int offset = 0;
+  for (int r = 0; r < world_size_; r += ranks_per_rve_) {
+    counts[r] = static_cast<int>(owned(r / ranks_per_rve_).size() * w);
+    offsets[r] = offset;
+    offset += counts[r];
   }
-  std::vector<double> all(rve_count_ * static_cast<std::size_t>(width));
-  const int send = group_leader() ? static_cast<int>(owned.size()) : 0;
-  MPI_Allgatherv(owned.data(), send, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
-                 MPI_DOUBLE, world_);
+  std::vector<double> by_group(rve_count_ * w);
+  const int send = group_leader() ? static_cast<int>(owned_values.size()) : 0;
+  MPI_Allgatherv(owned_values.data(), send, MPI_DOUBLE, by_group.data(), counts.data(),
+                 offsets.data(), MPI_DOUBLE, world_);
+  std::vector<double> all(rve_count_ * w);
+  std::size_t next = 0;
+  for (int g = 0; g < groups_; ++g) {
+    for (const std::size_t rve : owned(g)) {
+      std::copy_n(&by_group[next], w, &all[rve * w]);
+      next += w;
+    }
+  }
   return all;
 }
 

@@ -12,11 +12,13 @@ namespace mpm_lig::coupling {
 //! Which ranks run which RVEs.
 //!
 //! The ranks of `world` form groups of `ranks_per_rve` consecutive ranks; each group has its
-//! own communicator (every RVE of the group runs on it) and owns a contiguous block of the
-//! RVE indices [0, rve_count). The MPM itself is replicated on every rank, so after each
-//! update the owners' stresses are gathered to everyone, in RVE order: the result does not
-//! depend on the number of ranks as long as one RVE's own computation does not (one rank
-//! per RVE).
+//! own communicator (every RVE of the group runs on it). RVEs are dealt to the groups like
+//! cards: RVE i belongs to group i mod groups. Material points are numbered in space, so the
+//! expensive ones (under a footing, in a shear band) sit next to each other; dealt out, they
+//! spread over all ranks instead of loading the one that would own their block. The MPM
+//! itself is replicated on every rank, so after each update the owners' stresses are
+//! gathered to everyone, in RVE order: the result does not depend on the number of ranks as
+//! long as one RVE's own computation does not (one rank per RVE).
 class RveLayout {
  public:
   //! Collective over `world`. `ranks_per_rve` must divide the size of `world`.
@@ -33,17 +35,17 @@ class RveLayout {
   bool group_leader() const { return group_rank_ == 0; }
 
   std::size_t rve_count() const { return rve_count_; }
-  //! First and one-past-last RVE index owned by `group` (this rank's group by default).
-  std::size_t first(int group) const;
-  std::size_t last(int group) const;
-  std::size_t first() const { return first(group_); }
-  std::size_t last() const { return last(group_); }
-  bool owns(std::size_t rve) const { return rve >= first() && rve < last(); }
+  //! The RVE indices `group` owns, ascending (this rank's group by default).
+  std::vector<std::size_t> owned(int group) const;
+  const std::vector<std::size_t>& owned() const { return owned_; }
+  bool owns(std::size_t rve) const { return owner(rve) == group_; }
   //! The group that owns RVE `rve`.
   int owner(std::size_t rve) const;
+  //! Position of an owned RVE in `owned()`.
+  std::size_t local_index(std::size_t rve) const;
 
-  //! Collective: `owned` holds one tensor per RVE this group owns (in order); returns the
-  //! tensors of all RVEs, identical on every rank.
+  //! Collective: `owned` holds one tensor per RVE this group owns (in the order of `owned()`);
+  //! returns the tensors of all RVEs in RVE order, identical on every rank.
   std::vector<Mat3> gather(const std::vector<Mat3>& owned) const;
   //! The same for `width` doubles per RVE.
   std::vector<double> gather(const std::vector<double>& owned, int width) const;
@@ -58,6 +60,7 @@ class RveLayout {
   int groups_ = 1;
   int group_rank_ = 0;
   std::size_t rve_count_ = 0;
+  std::vector<std::size_t> owned_;
 };
 
 }  // namespace mpm_lig::coupling

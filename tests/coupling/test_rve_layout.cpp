@@ -23,22 +23,35 @@ Mat3 tag(std::size_t rve) {
 void check_layout(int ranks_per_rve, std::size_t rves) {
   RveLayout layout(MPI_COMM_WORLD, ranks_per_rve, rves);
   ASSERT_EQ(layout.groups(), world_size() / ranks_per_rve);
-  // The groups' blocks partition [0, rves) and are balanced to within one RVE.
-  EXPECT_EQ(layout.first(0), 0u);
-  EXPECT_EQ(layout.last(layout.groups() - 1), rves);
+  // The groups' shares partition [0, rves), are balanced to within one RVE, and neighbours
+  // in index (neighbours in space) belong to different groups.
+  std::vector<int> owners(rves, -1);
   for (int g = 0; g < layout.groups(); ++g) {
-    const std::size_t n = layout.last(g) - layout.first(g);
-    EXPECT_LE(n, rves / layout.groups() + 1);
-    EXPECT_GE(n, rves / layout.groups());
-    for (std::size_t r = layout.first(g); r < layout.last(g); ++r)
-      EXPECT_EQ(layout.owner(r), g);
+    const std::vector<std::size_t> share = layout.owned(g);
+    EXPECT_LE(share.size(), rves / layout.groups() + 1);
+    EXPECT_GE(share.size(), rves / layout.groups());
+    for (std::size_t i = 0; i < share.size(); ++i) {
+      ASSERT_LT(share[i], rves);
+      EXPECT_EQ(owners[share[i]], -1) << "RVE " << share[i] << " owned twice";
+      owners[share[i]] = g;
+      EXPECT_EQ(layout.owner(share[i]), g);
+      if (g == layout.group()) {
+        EXPECT_EQ(layout.local_index(share[i]), i);
+      }
+    }
+  }
+  for (std::size_t r = 0; r < rves; ++r) {
+    EXPECT_GE(owners[r], 0) << "RVE " << r << " owned by nobody";
+    if (r > 0 && layout.groups() > 1) {
+      EXPECT_NE(owners[r], owners[r - 1]) << "RVEs " << r - 1 << " and " << r;
+    }
   }
   int group_size = 0;
   MPI_Comm_size(layout.group_comm(), &group_size);
   EXPECT_EQ(group_size, ranks_per_rve);
 
   std::vector<Mat3> owned;
-  for (std::size_t r = layout.first(); r < layout.last(); ++r)
+  for (const std::size_t r : layout.owned())
     owned.push_back(tag(r));
   const std::vector<Mat3> all = layout.gather(owned);
   ASSERT_EQ(all.size(), rves);
