@@ -6,6 +6,7 @@
 
 #include "core/mpi_session.h"
 #include "rve/consolidation.h"
+#include "rve/snapshot.h"
 
 namespace mpm_lig::coupling {
 namespace {
@@ -294,6 +295,15 @@ std::vector<std::string> DemRveMaterial::state_names() const {
 
 double DemRveMaterial::state(std::size_t point, std::size_t /*k*/) const {
   return point < substeps_.size() ? substeps_[point] : 0.0;
+}
+
+void DemRveMaterial::write_snapshot(std::size_t point, const std::string& prefix) {
+  if (point >= points_)
+    throw std::out_of_range(path_ + ": no material point " + std::to_string(point));
+  if (!layout_)
+    create_rves();
+  if (layout_->owns(point))
+    rve::write_snapshot(*rves_[layout_->local_index(point)], prefix, layout_->group_leader());
 }
 
 materials::MaterialCost DemRveMaterial::cost() const {

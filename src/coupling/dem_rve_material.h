@@ -50,6 +50,8 @@ class DemRveMaterial final : public materials::Material {
               std::vector<Mat3>& stress) override;
   std::vector<std::string> state_names() const override;
   double state(std::size_t point, std::size_t k) const override;
+  bool has_snapshots() const override { return true; }
+  void write_snapshot(std::size_t point, const std::string& prefix) override;
   materials::MaterialCost cost() const override;
 
   //! Values per point in a checkpoint row: stress (9), DEM steps, Q (9), streaming (9),

@@ -70,6 +70,11 @@ class Material {
   virtual double state(std::size_t /*point*/, std::size_t /*k*/) const { return 0.0; }
   //! Cost counters (zero for continuum laws).
   virtual MaterialCost cost() const { return {}; }
+  //! Whether a point has a microstructure to draw (a DEM point's RVE).
+  virtual bool has_snapshots() const { return false; }
+  //! Collective over the material's communicator: write `point`'s microstructure as
+  //! PREFIX_{grains,contacts,cell}.vtk (only where has_snapshots()).
+  virtual void write_snapshot(std::size_t /*point*/, const std::string& /*prefix*/) {}
 };
 
 //! Creates a material from its case node (`materials[i]`); the node's "type" picks the entry.

@@ -293,6 +293,42 @@ void read_simple_shear(const CaseNode& o, MpmCase& c) {
   out.period = driver->function.time;
 }
 
+bool inside(const Box& box, const std::vector<double>& x) {
+  for (std::size_t d = 0; d < x.size(); ++d) {
+    if (x[d] < box.min[d] || x[d] > box.max[d])
+      return false;
+  }
+  return true;
+}
+
+//! output.rve_snapshots: {"at": [[x, y], ...], "every": n}; every position must lie in a body
+//! whose material has a microstructure (dem_rve).
+void read_rve_snapshots(const CaseNode& o, MpmCase& c) {
+  if (!o.has("rve_snapshots"))
+    return;
+  const CaseNode s = o.child("rve_snapshots");
+  RveSnapshotOutput& out = c.rve_snapshots;
+  if ((out.every = s.get_or<long>("every", 0)) < 0)
+    s.fail("every", "must be >= 0 (0: first and last step only)");
+  const std::vector<CaseNode> at = s.children("at");
+  if (at.empty())
+    s.fail("at", "needs at least one position");
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    const std::string key = "at[" + std::to_string(i) + "]";
+    const nlohmann::json& v = at[i].json();
+    if (!v.is_array() || v.size() != static_cast<std::size_t>(c.dimension) ||
+        !std::all_of(v.begin(), v.end(), [](const nlohmann::json& x) { return x.is_number(); }))
+      s.fail(key, "expected " + std::to_string(c.dimension) + " numbers (a position)");
+    const std::vector<double> x = v.get<std::vector<double>>();
+    const bool on_dem = std::any_of(c.bodies.begin(), c.bodies.end(), [&](const Body& b) {
+      return c.materials[b.material]->has_snapshots() && inside(b.box, x);
+    });
+    if (!on_dem)
+      s.fail(key, "lies in no body of a dem_rve material");
+    out.at.push_back(x);
+  }
+}
+
 void read_output(const CaseNode& root, MpmCase& c) {
   if (!root.has("output"))
     return;
@@ -303,6 +339,7 @@ void read_output(const CaseNode& root, MpmCase& c) {
     o.fail("history_every", "must be >= 1");
   c.write_fields = o.get_or<bool>("fields", true);
   read_simple_shear(o, c);
+  read_rve_snapshots(o, c);
   if ((c.checkpoint_every = o.get_or<long>("checkpoint_every", 0)) < 0)
     o.fail("checkpoint_every", "must be >= 0 (0: checkpoints on SIGTERM/SIGINT only)");
   for (const auto& m : c.materials) {

@@ -74,6 +74,13 @@ struct SimpleShearOutput {
   double period = 0.0;  //!< period of the driving constraint's time function [s]
 };
 
+//! RVE snapshots (output.rve_snapshots): the microstructure of the DEM points nearest to
+//! chosen positions, at the start, every `every` steps (0: never between) and at the end.
+struct RveSnapshotOutput {
+  std::vector<std::vector<double>> at;  //!< positions in the initial configuration
+  long every = 0;
+};
+
 //! Everything an MPM run needs, validated; dimension-independent plain data.
 struct MpmCase {
   std::string title;
@@ -112,6 +119,7 @@ struct MpmCase {
   long checkpoint_every = 0;  //!< main-stage steps between checkpoints; 0: only on SIGTERM
   bool write_fields = true;
   SimpleShearOutput simple_shear;
+  RveSnapshotOutput rve_snapshots;
 };
 
 //! Read and validate the whole case (everything but "title" and "analysis.type", which the

@@ -10,6 +10,7 @@
 
 #include "mpm/checkpoint.h"
 #include "mpm/recorder.h"
+#include "mpm/rve_snapshots.h"
 
 namespace mpm_lig::mpm {
 namespace {
@@ -83,6 +84,12 @@ bool run_case(MpmCase& c, const RunOptions& options,
     recorder = std::make_unique<Recorder<D>>(c, solver, options.directory, total,
                                              options.resume ? &resumed : nullptr);
   }
+  std::unique_ptr<RveSnapshots<D>> snapshots;
+  if (!options.run_dir.empty() && !c.rve_snapshots.at.empty()) {
+    snapshots = std::make_unique<RveSnapshots<D>>(c.rve_snapshots, solver, options.run_dir, total);
+    if (!options.resume)
+      snapshots->after_step(solver);
+  }
   const long kill_at = kill_step();
   int rank = 0;
   MPI_Comm_rank(options.comm, &rank);
@@ -90,6 +97,8 @@ bool run_case(MpmCase& c, const RunOptions& options,
     solver.step();
     if (recorder)
       recorder->after_step(solver);
+    if (snapshots)
+      snapshots->after_step(solver);
     if (observer)
       observer(solver);
     if (!checkpoints)
