@@ -1,19 +1,24 @@
 #!/bin/sh
 # SIGTERM (a batch job's wall time ends) mid-run: the run writes a checkpoint between two steps
 # and exits 0 at once; --resume then continues it to the end with every step in history.csv.
-# usage: sigterm_checkpoint.sh MPM_LIG CASE.json WORK_DIR
+# With a launcher (mpirun -np 2 ...) the signal goes to the launcher, as `kill` or a batch
+# system without srun sends it: the launcher must forward it to every rank. Open MPI's mpirun
+# then exits 1 although every rank exits 0 (measured, Open MPI 4.1): its exit code is not
+# checked, the stop message and the checkpoint are.
+# usage: sigterm_checkpoint.sh MPM_LIG CASE.json WORK_DIR [LAUNCHER ...]
 set -e
 exe=$1 case=$2 work=$3
+shift 3
 rm -rf "$work" && mkdir -p "$work"
 /usr/bin/python3 - "$case" "$work/case.json" <<'PY'
 import json, sys
 c = json.load(open(sys.argv[1]))
-c["analysis"]["end"] = {"steps": 300}
-c.setdefault("output", {})["every"] = 100
+c["analysis"]["end"] = {"steps": 1000}
+c.setdefault("output", {})["every"] = 250
 json.dump(c, open(sys.argv[2], "w"), indent=1)
 PY
 run="$work/run"
-"$exe" "$work/case.json" --output "$run" > "$work/stopped.log" 2>&1 &
+"$@" "$exe" "$work/case.json" --output "$run" > "$work/stopped.log" 2>&1 &
 pid=$!
 # Wait for a few main-stage steps, then ask the run to stop.
 tries=0
@@ -24,8 +29,10 @@ until [ -f "$run/history.csv" ] && [ "$(wc -l < "$run/history.csv")" -ge 4 ]; do
 done
 kill -TERM $pid
 start=$(date +%s.%N)
-if ! wait $pid; then
-  echo "the stopped run did not exit 0:"; cat "$work/stopped.log"; exit 1
+status=0
+wait $pid || status=$?
+if [ $# -eq 0 ] && [ $status -ne 0 ]; then
+  echo "the stopped run exited $status, not 0:"; cat "$work/stopped.log"; exit 1
 fi
 end=$(date +%s.%N)
 grep -q "stopped by a signal after step" "$work/stopped.log" || {
@@ -33,15 +40,15 @@ grep -q "stopped by a signal after step" "$work/stopped.log" || {
 latest=$(cat "$run/checkpoints/latest")
 step=${latest#step_}
 rows=$(($(wc -l < "$run/history.csv") - 1))
-echo "stopped at step $step, $rows history rows, exit $(echo "$end - $start" | bc) s after SIGTERM"
+echo "stopped at step $step, $rows history rows, exit $status $(echo "$end - $start" | bc) s after SIGTERM"
 [ "$rows" -eq $((step + 1)) ] || { echo "history rows do not match the checkpoint"; exit 1; }
-[ "$step" -lt 300 ] || { echo "the run ended before the signal"; exit 1; }
-"$exe" "$work/case.json" --resume "$run" > "$work/resumed.log" 2>&1
+[ "$step" -lt 1000 ] || { echo "the run ended before the signal"; exit 1; }
+"$@" "$exe" "$work/case.json" --resume "$run" > "$work/resumed.log" 2>&1
 /usr/bin/python3 - "$run/history.csv" <<'PY'
 import sys
 rows = [line.split(",")[0] for line in open(sys.argv[1]).read().splitlines()[1:]]
 steps = [int(float(s)) for s in rows]
-if steps != list(range(301)):
-    sys.exit("history.csv steps are not 0..300 once each: %s" % steps[:5])
-print("resumed to the end: 301 history rows, steps 0..300")
+if steps != list(range(1001)):
+    sys.exit("history.csv steps are not 0..1000 once each: %s" % steps[:5])
+print("resumed to the end: 1001 history rows, steps 0..1000")
 PY
