@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,8 @@ class Material {
   virtual Mat3 initial_stress(std::size_t /*point*/) const { return Mat3::Zero(); }
   //! Impose an initial stress (for example K0) on one point, where the material allows it.
   virtual void set_stress(std::size_t point, const Mat3& sigma) = 0;
+  //! Put back a stress this material computed itself (a resumed run), bit for bit.
+  virtual void restore_stress(std::size_t point, const Mat3& sigma) { set_stress(point, sigma); }
 
   //! Advance `points` by their deformation increments `dF` (F_new = dF F_old, spin
   //! included) over `dt`, and write their new Cauchy stresses (tension positive) to `stress`.
@@ -68,6 +71,14 @@ class Material {
   virtual std::vector<std::string> state_names() const { return {}; }
   //! Value of state variable `k` of `point`.
   virtual double state(std::size_t /*point*/, std::size_t /*k*/) const { return 0.0; }
+  //! Whether stress and state_names() values are the whole state of a point, so that a
+  //! checkpoint can restore it with set_stress() and set_state() (a DEM material saves its
+  //! RVEs itself and says so too).
+  virtual bool checkpointable() const { return state_names().empty(); }
+  //! Restore state variable `k` of `point` (materials that are checkpointable with state).
+  virtual void set_state(std::size_t /*point*/, std::size_t /*k*/, double /*value*/) {
+    throw std::logic_error(type() + ": set_state() on a material without restorable state");
+  }
   //! Cost counters (zero for continuum laws).
   virtual MaterialCost cost() const { return {}; }
   //! Whether a point has a microstructure to draw (a DEM point's RVE).

@@ -10,6 +10,10 @@ double PlasticMaterial::state(std::size_t point, std::size_t k) const {
   return plastic_.at(point)[static_cast<Eigen::Index>(k)];
 }
 
+void PlasticMaterial::set_state(std::size_t point, std::size_t k, double value) {
+  plastic_.at(point)[static_cast<Eigen::Index>(k)] = value;
+}
+
 void PlasticMaterial::accumulate(std::size_t point, const Vec3& plastic_principal) {
   const double volumetric = plastic_principal.sum();
   const Vec3 deviatoric = plastic_principal - (volumetric / 3.0) * Vec3::Ones();

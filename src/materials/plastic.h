@@ -21,6 +21,9 @@ class PlasticMaterial : public ContinuumMaterial {
     return {"plastic_strain", "plastic_volumetric_strain"};
   }
   double state(std::size_t point, std::size_t k) const override;
+  //! Perfect plasticity: stress and the accumulated plastic strains are the whole state.
+  bool checkpointable() const override { return true; }
+  void set_state(std::size_t point, std::size_t k, double value) override;
 
  protected:
   void resize_state(std::size_t count) override { plastic_.resize(count, Eigen::Vector2d::Zero()); }

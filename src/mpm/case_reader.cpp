@@ -344,7 +344,7 @@ void read_output(const CaseNode& root, MpmCase& c) {
     o.fail("checkpoint_every", "must be >= 0 (0: checkpoints on SIGTERM/SIGINT only)");
   for (const auto& m : c.materials) {
     // A checkpoint saves each point's stress; a DEM point's RVE saves its own state.
-    if (c.checkpoint_every > 0 && m->type() != "dem_rve" && !m->state_names().empty())
+    if (c.checkpoint_every > 0 && !m->checkpointable())
       o.fail("checkpoint_every", "material type '" + m->type() +
                                      "' has state variables a checkpoint does not save yet");
   }

@@ -46,12 +46,49 @@ std::string read_latest(const std::string& run_dir) {
   return name;
 }
 
+//! Every state variable of material `m`'s points, point by point in particle order.
+template <int D>
+std::vector<double> material_state(const Solver<D>& solver, std::size_t m) {
+  const materials::Material& material = *solver.materials()[m];
+  const std::size_t names = material.state_names().size();
+  const Particles<D>& p = solver.particles();
+  std::vector<double> values;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.material[k] != static_cast<int>(m))
+      continue;
+    for (std::size_t s = 0; s < names; ++s)
+      values.push_back(material.state(p.material_point[k], s));
+  }
+  return values;
+}
+
+template <int D>
+void restore_material_state(Solver<D>& solver, std::size_t m, const std::vector<double>& values,
+                            const std::string& dir) {
+  materials::Material& material = *solver.materials()[m];
+  const std::size_t names = material.state_names().size();
+  const Particles<D>& p = solver.particles();
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.material[k] != static_cast<int>(m))
+      continue;
+    material.restore_stress(p.material_point[k], p.stress[k]);
+    for (std::size_t s = 0; s < names; ++s) {
+      if (next >= values.size())
+        throw std::runtime_error("checkpoint '" + dir + "' does not match the case's points");
+      material.set_state(p.material_point[k], s, values[next++]);
+    }
+  }
+  if (next != values.size())
+    throw std::runtime_error("checkpoint '" + dir + "' does not match the case's points");
+}
+
 }  // namespace
 
 template <int D>
 std::string checkpoint_obstacle(const Solver<D>& solver) {
   for (const auto& m : solver.materials()) {
-    if (!as_dem(m) && !m->state_names().empty())
+    if (!m->checkpointable())
       return "material type '" + m->type() + "' has state variables a checkpoint does not save";
   }
   return "";
@@ -76,8 +113,11 @@ void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderS
     file = std::make_unique<io::CheckpointFile>(dir + "/mpm.h5", io::CheckpointFile::Mode::create);
   for (std::size_t m = 0; m < solver.materials().size(); ++m) {
     coupling::DemRveMaterial* dem = as_dem(solver.materials()[m]);
-    if (!dem)
+    if (!dem) {
+      if (file)
+        file->write(material_name(c, m) + "_state", material_state(solver, m));
       continue;
+    }
     const std::vector<double> rows = dem->write_checkpoint(dir + "/" + material_name(c, m));
     if (file) {
       file->write(material_name(c, m) + "_rows", rows);
@@ -156,10 +196,7 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
                               file.get(n + "_particle_steps"));
       continue;
     }
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      if (p.material[k] == static_cast<int>(m))
-        material->set_stress(p.material_point[k], p.stress[k]);
-    }
+    restore_material_state(solver, m, file.read(material_name(c, m) + "_state"), dir);
   }
   MPI_Barrier(comm);
   RecorderState r;
