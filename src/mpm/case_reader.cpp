@@ -109,6 +109,23 @@ void read_mesh(const CaseNode& m, MpmCase& c) {
       m.fail("cells", "must be between 1 and 100000 along " + kAxes[d]);
   }
   c.cells = cells;
+  c.periodic.assign(c.dimension, false);
+  if (!m.has("periodic"))
+    return;
+  const std::vector<std::string> names = m.get<std::vector<std::string>>("periodic");
+  const std::vector<std::string> valid = axes(c.dimension);
+  for (const std::string& name : names) {
+    const auto it = std::find(valid.begin(), valid.end(), name);
+    if (it == valid.end())
+      m.fail("periodic",
+             "'" + name + "' is not an axis of this " + std::to_string(c.dimension) + "D mesh");
+    const std::size_t d = static_cast<std::size_t>(it - valid.begin());
+    if (c.periodic[d])
+      m.fail("periodic", "axis " + name + " is given twice");
+    if (d + 1 == static_cast<std::size_t>(c.dimension))
+      m.fail("periodic", "the last axis (vertical: gravity, footings) cannot be periodic");
+    c.periodic[d] = true;
+  }
 }
 
 void read_materials(const CaseNode& root, const materials::MaterialRegistry& registry, MpmCase& c) {
@@ -204,6 +221,9 @@ NodeSelector read_nodes(const CaseNode& node, const MpmCase& c) {
   s.axis =
       static_cast<int>(std::find(kAxes.begin(), kAxes.end(), face.substr(0, 1)) - kAxes.begin());
   s.upper = face[1] == '+';
+  if (c.periodic[s.axis])
+    n.fail("face",
+           "the mesh is periodic along " + kAxes[s.axis] + ": " + face + " is not a boundary");
   return s;
 }
 

@@ -104,6 +104,8 @@ struct MpmCase {
   // mesh
   std::vector<double> origin, size;
   std::vector<int> cells;
+  //! Per axis: the mesh wraps around (mesh.periodic); its two faces are one node plane.
+  std::vector<bool> periodic;
 
   std::vector<double> gravity;
   std::vector<std::unique_ptr<materials::Material>> materials;

@@ -42,6 +42,8 @@ Solver<D>::Solver(MpmCase& c)
       case_damping_(c.damping),
       mass_scaling_(c.mass_scaling),
       volumetric_smoothing_(c.volumetric_smoothing) {
+  for (int d = 0; d < D && static_cast<std::size_t>(d) < c.periodic.size(); ++d)
+    periodic_[d] = c.periodic[d];
   for (const Footing& f : c.footings)
     footings_.emplace_back(f, grid_);
   traction_points_.resize(tractions_.size());
@@ -137,7 +139,10 @@ void Solver<D>::compute_shape_functions() {
       for (int d = 0; d < D; ++d) {
         // A GIMP point at a grid face reaches past it: the weight of the missing node goes
         // to the face node, which keeps the partition of unity (and of its gradient).
-        index[d] = std::clamp<long>(w[d].first + k[d], 0, grid_.cells(d));
+        // Along a periodic axis the node index wraps: the upper face is the lower one.
+        const long n = grid_.cells(d);
+        index[d] = periodic_[d] ? ((w[d].first + k[d]) % n + n) % n
+                                : std::clamp<long>(w[d].first + k[d], 0, n);
         value *= w[d].value[k[d]];
         for (int e = 0; e < D; ++e)
           gradient[e] *= e == d ? w[d].gradient[k[d]] : w[d].value[k[d]];
@@ -152,6 +157,18 @@ void Solver<D>::compute_shape_functions() {
       if (d == D)
         break;
     }
+  }
+}
+
+template <int D>
+void Solver<D>::wrap_periodic(Vec& x) const {
+  for (int d = 0; d < D; ++d) {
+    if (!periodic_[d])
+      continue;
+    const double length = grid_.size()[d];
+    const double offset = x[d] - grid_.origin()[d];
+    if (offset < 0.0 || offset >= length)
+      x[d] = grid_.origin()[d] + (offset - length * std::floor(offset / length));
   }
 }
 
@@ -241,6 +258,7 @@ void Solver<D>::map_grid_to_particles() {
     Vec& v = particles_.velocity[p];
     v = flip_ * (v + dv) + (1.0 - flip_) * v_pic;
     particles_.position[p] += dt_ * v_pic;
+    wrap_periodic(particles_.position[p]);
   }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -65,6 +66,8 @@ class Solver {
  private:
   double stable_time_step(const MpmCase& c) const;
   void compute_shape_functions();
+  //! Bring a position that left through a periodic face back in through the other.
+  void wrap_periodic(Vec& x) const;
   void compute_external_forces();
   void map_particles_to_grid();
   void update_grid();
@@ -91,7 +94,8 @@ class Solver {
   double case_damping_;
   double mass_scaling_;
   bool volumetric_smoothing_;
-  double prescribed_scale_ = 1.0;  // 0 in the gravity stage
+  std::array<bool, D> periodic_{};  // per axis: the mesh wraps around
+  double prescribed_scale_ = 1.0;   // 0 in the gravity stage
 
   double dt_ = 0.0;
   double time_ = 0.0;
