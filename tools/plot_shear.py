@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Cyclic simple shear: shear stress-strain loops and stress path (seed Fig. 3).
 
-usage: plot_shear.py OUTPUT_DIR [-o picture.png]
+usage: plot_shear.py OUTPUT_DIR [-o picture.png] [--points]
 
 Reads OUTPUT_DIR/history.csv, either of an MPM cyclic simple shear run (columns
 shear_strain, shear_stress, mean_stress, optional cycle) or of an element test (gamma_xy or
@@ -12,6 +12,11 @@ counted along the strain path 0 -> +gamma_a -> -gamma_a -> 0. Prints per cycle t
 shear modulus G_sec = (tau(gamma_max) - tau(gamma_min)) / (gamma_max - gamma_min) and the
 mean-stress ratio p_end/p0 (p0: first row; 1 - p/p0 is the pore-pressure ratio of the
 equivalent undrained test).
+
+--points (MPM runs) adds panel (c) from OUTPUT_DIR/results.h5: every material point's mean
+effective stress p' = -(s_xx + s_yy)/2 over time, coloured by its initial height, and prints
+each point's height, final p'/p0 and largest |gamma| = 2 |e_xy| (log strain) in the run: in a
+boundary-value problem the points need not follow the same path (localisation).
 """
 import os
 
@@ -19,6 +24,7 @@ import numpy as np
 
 from mpm_lig_post import cli, figures
 from mpm_lig_post.errors import InputError
+from mpm_lig_post.fields import FieldFile
 from mpm_lig_post.tables import read_history, require_columns
 
 MPM_COLUMNS = ("shear_strain", "shear_stress", "mean_stress")
@@ -74,8 +80,54 @@ def print_table(rows):
               f"{g / g1:6.3f} {pe / 1e3:11.4g} {ratio:8.3f}")
 
 
-def draw(gamma, tau, p, cycle, title, png, dpi):
-    fig, (loops, path) = figures.subplots(1, 2, figsize=(10.5, 4.3))
+def point_series(directory):
+    """(times, initial heights, p' per step and point, largest |gamma| per point) from results.h5."""
+    fields = FieldFile(os.path.join(directory, "results.h5"))
+    try:
+        first = fields.step(fields.steps[0])
+        height = first["positions"][:, 1]
+        times, pressure, gamma = [], [], np.zeros(len(height))
+        for step in fields.steps:
+            s = fields.step(step)
+            stress, strain = s["stress"], s["strain"]
+            times.append(s.time)
+            pressure.append(-(stress[:, 0] + stress[:, 1]) / 2)
+            gamma = np.maximum(gamma, 2 * np.abs(strain[:, 3]))
+    finally:
+        fields.close()
+    if len(times) < 2:
+        raise InputError(f"{directory}/results.h5: --points needs at least two output steps")
+    return np.array(times), height, np.array(pressure), gamma
+
+
+def print_points(height, pressure, gamma):
+    print("point  y0 [m]  p_end/p0  max|gamma| [%]")
+    for k in np.argsort(height):
+        p0 = pressure[0, k]
+        ratio = pressure[-1, k] / p0 if p0 != 0 else float("nan")
+        print(f"{k:5d} {height[k]:7.4g} {ratio:9.3f} {100 * gamma[k]:15.3g}")
+
+
+def draw_points(ax, times, height, pressure):
+    span = max(np.ptp(height), 1e-12)
+    colours = figures.pyplot().cm.plasma((height - height.min()) / span * 0.9)
+    for k in np.argsort(height):
+        ax.plot(times, pressure[:, k] / 1e3, color=colours[k], lw=1.0)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel(r"$p'$ of each point [kPa]")
+    ax.set_title("(c) points, coloured by height")
+    ax.set_ylim(bottom=0)
+    sm = figures.pyplot().cm.ScalarMappable(
+        cmap="plasma", norm=figures.pyplot().Normalize(height.min(), height.min() + span / 0.9))
+    ax.figure.colorbar(sm, ax=ax, label="initial height y [m]")
+
+
+def draw(gamma, tau, p, cycle, title, png, dpi, points=None):
+    if points is None:
+        fig, (loops, path) = figures.subplots(1, 2, figsize=(10.5, 4.3))
+    else:
+        fig, (loops, path, per_point) = figures.subplots(1, 3, figsize=(15.5, 4.3))
+        draw_points(per_point, *points)
     cycles = np.unique(cycle)
     colours = figures.pyplot().cm.viridis(np.linspace(0.0, 0.9, len(cycles)))
     for c, colour in zip(cycles, colours):
@@ -108,7 +160,10 @@ def draw(gamma, tau, p, cycle, title, png, dpi):
 
 
 def main():
-    args = cli.parser(__doc__.split("\n")[0], "shear.png").parse_args()
+    parser = cli.parser(__doc__.split("\n")[0], "shear.png")
+    parser.add_argument("--points", action="store_true",
+                        help="add each material point's p' over time from results.h5")
+    args = parser.parse_args()
     directory = cli.output_dir(args)
     path = os.path.join(directory, "history.csv")
     gamma, tau, p, cycle = shear_series(read_history(path), path)
@@ -117,8 +172,13 @@ def main():
     cycle = count_cycles(gamma) if cycle is None else np.rint(cycle).astype(int)
     rows = cycle_table(gamma, tau, p, cycle)
     print_table(rows)
+    points = None
+    if args.points:
+        times, height, pressure, point_gamma = point_series(directory)
+        print_points(height, pressure, point_gamma)
+        points = (times, height, pressure)
     draw(gamma, tau, p, cycle, f"cyclic simple shear: {os.path.basename(os.path.abspath(directory))}",
-         cli.picture_path(args), args.dpi)
+         cli.picture_path(args), args.dpi, points)
 
 
 if __name__ == "__main__":

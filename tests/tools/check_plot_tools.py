@@ -119,6 +119,38 @@ def shear_mpm(work):
     check_picture(os.path.join(work, "shear.png"))
 
 
+def shear_points(work):
+    """--points: per-point p' from results.h5; three points at heights 0.3, 0.1, 0.2 whose p'
+    falls to 80 %, 0 and 50 % of p0 while their log shear strain e_xy peaks at 0.4, 1.5 and
+    0.6 %."""
+    gamma, tau, p, cycle = shear_path()
+    synthetic.write_history(work, ["step", "time", "cycle", "shear_strain", "shear_stress", "mean_stress"],
+                            np.column_stack([np.arange(len(gamma)), np.arange(len(gamma)) * 1e-3,
+                                             cycle, gamma, tau, -p]))
+    heights, final, peak = np.array([0.3, 0.1, 0.2]), np.array([0.8, 0.0, 0.5]), np.array([0.4, 1.5, 0.6])
+    steps = []
+    for k, f in enumerate(np.linspace(0, 1, 6)):
+        ratio = 1 - f * (1 - final)
+        stress = np.zeros((3, 6))
+        stress[:, 0] = stress[:, 1] = -P0 * ratio
+        strain = np.zeros((3, 6))
+        strain[:, 3] = peak / 100 * math.sin(math.pi * f / 2) * (-1) ** k
+        positions = np.column_stack([np.full(3, 0.025), heights, np.zeros(3)])
+        steps.append((k * 10, k * 0.01, {"positions": positions, "stress": stress, "strain": strain}))
+    synthetic.write_fields(work, steps)
+    result = run_tool("plot_shear.py", work, "--points")
+    expect(result.returncode == 0, "plot_shear --points failed: " + result.stderr)
+    cycles, _, points = result.stdout.partition("point  y0")
+    check_shear_table(cycles)
+    rows = [line.split() for line in points.splitlines()[1:] if re.match(r"\s*\d+\s", line)]
+    expect([int(r[0]) for r in rows] == [1, 2, 0], f"points not in height order: {rows}")
+    for r in rows:
+        k = int(r[0])
+        expect(abs(float(r[2]) - final[k]) < 1e-3, f"point {k}: p_end/p0 {r[2]}, expected {final[k]}")
+        expect(abs(float(r[3]) - 2 * peak[k]) < 1e-2, f"point {k}: max gamma {r[3]} %, expected {2 * peak[k]}")
+    check_picture(os.path.join(work, "shear.png"))
+
+
 def shear_bad(work):
     synthetic.write_history(work, ["cycle", "shear_strain", "mean_stress"], [[1, 0, 1e5], [1, 0.01, 1e5]])
     expect_bad_input(run_tool("plot_shear.py", work), "shear_stress", "history.csv")
@@ -295,7 +327,7 @@ def real_footing(work, mpm_lig):
     check_picture(os.path.join(out, "fields.png"))
 
 
-CASES = {f.__name__: f for f in (real_footing, shear_element, shear_mpm, shear_bad, force_chains, force_chains_bad,
+CASES = {f.__name__: f for f in (real_footing, shear_element, shear_mpm, shear_points, shear_bad, force_chains, force_chains_bad,
                                  footing, footing_bad, fields_2d, fields_3d, fields_bad)}
 
 if __name__ == "__main__":
