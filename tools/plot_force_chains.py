@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Force chains of an RVE before and after loading (seed Fig. 4), side by side.
 
-usage: plot_force_chains.py OUTPUT_DIR [-o picture.png] [--steps A B] [--rve SUBDIR]
+usage: plot_force_chains.py OUTPUT_DIR [-o picture.png] [--steps A B] [--rve SUBDIR|NAME]
                             [--plane xy|xz|yz]
 
 Reads the RVE snapshots (PREFIX_grains.vtk, PREFIX_contacts.vtk, PREFIX_cell.vtk, legacy VTK
@@ -9,6 +9,9 @@ as src/rve/snapshot.cpp writes them; PREFIX = rve_NNNNNN, NNNNNN the increment) 
 OUTPUT_DIR (e.g. OUTPUT_DIR/snapshots). Default: the first and the last snapshot. Grains are
 circles (3D: spheres projected on --plane, default xz), contact forces centre-to-centre lines
 of width proportional to |f|, on one force scale for both panels; the periodic cell dashed.
+With several RVEs (an MPM run's output.rve_snapshots: snapshots/point_NNNNNN/, NNNNNN the
+material point, the increment the MPM step) --rve names the folder, by its path under
+OUTPUT_DIR or by its own name.
 """
 import glob
 import os
@@ -43,6 +46,9 @@ def choose(directory, rve, steps):
         raise InputError(f"{directory}: no RVE snapshot (*_grains.vtk) found")
     if rve is not None:
         folder = os.path.normpath(os.path.join(directory, rve))
+        named = [f for f in sets if os.path.basename(f) == os.path.basename(os.path.normpath(rve))]
+        if folder not in sets and len(named) == 1:
+            folder = named[0]  # a folder's own name, e.g. point_000132 of an MPM run
         if folder not in sets:
             raise InputError(f"{folder}: no RVE snapshot there "
                              f"(snapshot folders: {', '.join(sorted(sets))})")
