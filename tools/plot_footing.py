@@ -3,6 +3,7 @@
 
 usage: plot_footing.py OUTPUT_DIR [-o picture.png] [--case CASE.json] [--width B]
                        [--surcharge q_s | --cu c_u] [--phi DEG] [--prandtl]
+                       [--label TEXT] [--compare DIR LABEL ...] [--window A B]
 
 Reads OUTPUT_DIR/history.csv (settlement [m], load, q [Pa] of the first footing) and
 summary.json when present (its peak_q is cross-checked). The footing width B comes from
@@ -12,6 +13,8 @@ strength c_u (--cu, or the case's tresca material; with --prandtl or without a
 surcharge); the horizontal lines are Vesic's
 N_q = tan^2(pi/4 + phi/2) exp(pi tan phi) for --phi DEG (over q_s) and Prandtl's 2 + pi
 (--prandtl, over c_u). Without a normaliser q is plotted in kPa.
+--compare draws other runs of the same footing (same B and normaliser) as dashed lines, e.g. a
+continuum run on the same mesh; --window A B prints each curve's mean over s/B in [A, B] too.
 """
 import math
 import os
@@ -46,6 +49,14 @@ def case_values(path):
     return width, surcharge, cu
 
 
+def report_window(label, settlement, y, window):
+    inside = (settlement >= window[0]) & (settlement <= window[1])
+    if not inside.any():
+        raise InputError(f"{label}: no sample with s/B in [{window[0]}, {window[1]}]")
+    print(f"{label}: mean over s/B in [{window[0]:g}, {window[1]:g}] = {y[inside].mean():.4g} "
+          f"(min {y[inside].min():.4g}, max {y[inside].max():.4g})")
+
+
 def main():
     p = cli.parser(__doc__.split("\n")[0], "footing.png")
     p.add_argument("--case", help="the run's case file (footing width, surcharge, c_u)")
@@ -55,6 +66,11 @@ def main():
     norm.add_argument("--cu", type=float, help="undrained strength c_u [Pa]: plot q/c_u")
     p.add_argument("--phi", type=float, help="friction angle phi' [deg]: draw Vesic's N_q")
     p.add_argument("--prandtl", action="store_true", help="draw Prandtl's 2 + pi")
+    p.add_argument("--label", default="MPM", help="legend text of OUTPUT_DIR's curve")
+    p.add_argument("--compare", nargs=2, action="append", default=[], metavar=("DIR", "LABEL"),
+                   help="another run's output directory and its legend text (repeatable)")
+    p.add_argument("--window", nargs=2, type=float, metavar=("A", "B"),
+                   help="print each curve's mean over s/B in [A, B]")
     args = p.parse_args()
     directory = cli.output_dir(args)
     path = os.path.join(directory, "history.csv")
@@ -83,6 +99,12 @@ def main():
             raise InputError(f"--{name} must be > 0, got {value}")
 
     settlement, q = table["settlement"] / width, table["q"]
+    others = []
+    for other_dir, label in args.compare:
+        other_path = os.path.join(other_dir, "history.csv")
+        other = read_history(other_path)
+        require_columns(other, ("settlement", "q"), other_path)
+        others.append((label, other["settlement"] / width, other["q"]))
     if surcharge is not None:
         y, ylabel, scale = q / surcharge, r"normalised load $q/q_s$", surcharge
     elif cu is not None:
@@ -97,8 +119,17 @@ def main():
         print(f"note: summary.json peak_q = {summary['peak_q']:.6g} Pa differs from the "
               f"history's {q.max():.6g} Pa (history_every > 1 misses the exact peak)")
 
+    if args.window:
+        report_window(args.label, settlement, y, args.window)
     fig, ax = figures.subplots(figsize=(6.4, 4.6))
-    ax.plot(settlement, y, color="k", label="MPM")
+    ax.plot(settlement, y, color="k", label=args.label)
+    for k, (label, s_other, q_other) in enumerate(others):
+        y_other = q_other / scale if scale != 1e3 else q_other / 1e3
+        k_peak = int(np.argmax(y_other))
+        print(f"{label}: peak {y_other[k_peak]:.4g} at s/B = {s_other[k_peak]:.4g}")
+        if args.window:
+            report_window(label, s_other, y_other, args.window)
+        ax.plot(s_other, y_other, color=f"C{k + 1}", ls=(0, (4, 2)), lw=1.2, label=label)
     ax.plot(settlement[peak], y[peak], "o", color="k", ms=5, mfc="w",
             label=f"peak {y[peak]:.3g}")
     if args.phi is not None:
@@ -114,7 +145,7 @@ def main():
     ax.set_ylabel(ylabel)
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
-    ax.legend(loc="lower right", frameon=False)
+    ax.legend(loc="lower right" if not others else "best", frameon=False)
     ax.set_title(f"strip footing, B = {width:g} m: {os.path.basename(os.path.abspath(directory))}")
     fig.tight_layout()
     figures.save(fig, cli.picture_path(args), args.dpi)

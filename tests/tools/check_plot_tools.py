@@ -236,6 +236,19 @@ def footing(work):
     expect(abs(numbers_after(result.stdout, "peak / N_q =")[0] - peak / SURCHARGE / nq) < 2e-3, "peak / N_q")
     expect(abs(numbers_after(result.stdout, "B =")[0] - WIDTH) < 1e-12, "B from the case")
     check_picture(os.path.join(work, "footing.png"), min_colours=8)
+    # A second run at half the plateau, compared; the window mean of the plateau region.
+    other = os.path.join(work, "other")
+    footing_history(other, nq / 2)
+    result = run_tool("plot_footing.py", work, "--case", case, "--phi", PHI, "--label", "run A",
+                      "--compare", other, "run B", "--window", 0.1, 0.15)
+    expect(result.returncode == 0, "plot_footing --compare failed: " + result.stderr)
+    mean_a = numbers_after(result.stdout, "run A: mean over s/B in [0.1, 0.15] =")[0]
+    mean_b = numbers_after(result.stdout, "run B: mean over s/B in [0.1, 0.15] =")[0]
+    expect(abs(mean_a / nq - 1) < 0.01, f"run A window mean {mean_a}, expected about {nq}")
+    expect(abs(mean_b / mean_a - 0.5) < 1e-3, f"run B / run A window means {mean_b / mean_a}")
+    expect(abs(numbers_after(result.stdout, "run B: peak")[0] - peak / SURCHARGE / 2) < 1e-3,
+           "run B peak")
+    check_picture(os.path.join(work, "footing.png"), min_colours=8)
 
 
 def footing_bad(work):
