@@ -130,8 +130,16 @@ bool run_case(MpmCase& c, const RunOptions& options,
     if (rank == 0 && solver.steps() == kill_at)
       std::raise(SIGKILL);
   }
+  // Collective: every rank's DEM time, so the summary can show the load balance.
+  const double dem_seconds = total_cost(solver.materials()).compute_seconds;
+  int comm_size = 1;
+  MPI_Comm_size(options.comm, &comm_size);
+  std::vector<double> dem_seconds_per_rank(comm_size);
+  MPI_Gather(&dem_seconds, 1, MPI_DOUBLE, dem_seconds_per_rank.data(), 1, MPI_DOUBLE, 0,
+             options.comm);
   if (recorder) {
     RunTotals totals;
+    totals.dem_seconds_per_rank = dem_seconds_per_rank;
     totals.gravity_stage_steps = c.gravity_stage_steps;
     totals.ranks = options.ranks;
     totals.wall_seconds =

@@ -248,6 +248,17 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
                      {"preparation", cost.preparation_seconds},
                      {"output", output_seconds_},
                      {"mpm", mpm}};
+  if (cost.particle_steps > 0.0 && !totals.dem_seconds_per_rank.empty()) {
+    // max / mean of the ranks' DEM time: 1 is perfect balance; the excess is waiting.
+    const auto& per_rank = totals.dem_seconds_per_rank;
+    double sum = 0.0, most = 0.0;
+    for (const double t : per_rank) {
+      sum += t;
+      most = std::max(most, t);
+    }
+    s["dem_seconds_per_rank"] = per_rank;
+    s["load_imbalance"] = sum > 0.0 ? most * static_cast<double>(per_rank.size()) / sum : 1.0;
+  }
   s["mpm_steps"] = solver.steps();
   s["gravity_stage_steps"] = totals.gravity_stage_steps;
   s["material_points"] = solver.particles().size();

@@ -17,6 +17,8 @@ struct RunTotals {
   long gravity_stage_steps = 0;
   int ranks = 1;
   double wall_seconds = 0.0;  //!< the whole run, material preparation included
+  //! Each rank's time in its RVEs (rank order; empty without MPI materials' cost).
+  std::vector<double> dem_seconds_per_rank;
 };
 
 //! The materials' cost counters added up (DEM RVEs; zero for continuum materials).

@@ -33,6 +33,11 @@ def main():
     split = s["time_split"]
     check(all(v >= 0 for v in split.values()), "negative time in %s" % split)
     check(split["dem"] > split["mpm"], "DEM should dominate: %s" % split)
+    per_rank = s["dem_seconds_per_rank"]
+    check(len(per_rank) == RANKS and min(per_rank) > 0, "dem_seconds_per_rank %s" % per_rank)
+    check(abs(per_rank[0] - split["dem"]) < 1e-9 * split["dem"], "rank 0's DEM time %s" % per_rank)
+    imbalance = max(per_rank) * len(per_rank) / sum(per_rank)
+    check(abs(s["load_imbalance"] - imbalance) < 1e-12, "load_imbalance %s" % s["load_imbalance"])
 
     rows = list(csv.DictReader(open(out + "/history.csv")))
     check(len(rows) == STEPS + 1, "history rows %d" % len(rows))
