@@ -269,6 +269,9 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
   const int h = c.dimension - 1;  // horizontal axes
   for (const CaseNode& r : root.children("rigid_bodies")) {
     r.choice("type", {"footing"});
+    // A footing's footprint is cut at the mesh faces (half models): not across a seam.
+    if (std::find(c.periodic.begin(), c.periodic.end(), true) != c.periodic.end())
+      r.fail("type", "footings are not supported on a periodic mesh (mesh.periodic)");
     Footing f;
     f.center = read_vector(r, "center", h);
     f.width = read_vector(r, "width", h);

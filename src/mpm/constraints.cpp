@@ -1,5 +1,8 @@
 #include "mpm/constraints.h"
 
+#include <algorithm>
+#include <array>
+
 namespace mpm_lig::mpm {
 
 template <int D>
@@ -20,11 +23,34 @@ std::vector<long> select_nodes(const NodeSelector& selector, const Grid<D>& grid
   return out;
 }
 
+namespace {
+
+//! Replace upper-face nodes of periodic axes by their lower-face partners, without repeats.
 template <int D>
-NodeConstraints<D>::NodeConstraints(const std::vector<Constraint>& constraints,
-                                    const Grid<D>& grid) {
+std::vector<long> fold_periodic(const std::vector<long>& nodes, const Grid<D>& grid,
+                                const std::vector<bool>& periodic) {
+  std::vector<long> out;
+  for (const long id : nodes) {
+    auto index = grid.node_index(id);
+    std::array<long, D> folded{};
+    for (int d = 0; d < D; ++d) {
+      const bool wraps = static_cast<std::size_t>(d) < periodic.size() && periodic[d];
+      folded[d] = wraps && index[d] == grid.cells(d) ? 0 : index[d];
+    }
+    const long partner = grid.node_id(folded);
+    if (std::find(out.begin(), out.end(), partner) == out.end())
+      out.push_back(partner);
+  }
+  return out;
+}
+
+}  // namespace
+
+template <int D>
+NodeConstraints<D>::NodeConstraints(const std::vector<Constraint>& constraints, const Grid<D>& grid,
+                                    const std::vector<bool>& periodic) {
   for (const Constraint& c : constraints)
-    sets_.push_back({c, select_nodes(c.nodes, grid)});
+    sets_.push_back({c, fold_periodic(select_nodes(c.nodes, grid), grid, periodic)});
   reactions_.assign(sets_.size(), Vec::Zero());
 }
 

@@ -43,6 +43,7 @@ bool run_case(MpmCase& c, const std::string& directory,
               const std::function<void(const Solver<D>&)>& observer = {}) {
   RunOptions options;
   options.directory = directory;
+  options.comm = MPI_COMM_SELF;  // one process's run: no collective over other ranks
   return run_case<D>(c, options, observer);
 }
 

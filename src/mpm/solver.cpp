@@ -32,7 +32,7 @@ Solver<D>::Solver(MpmCase& c)
             }()),
       particles_(generate_particles<D>(c)),
       shape_(shape_registry().create(c.shape_function)),
-      constraints_(c.constraints, grid_),
+      constraints_(c.constraints, grid_, c.periodic),
       materials_(std::move(c.materials)),
       tractions_(c.tractions),
       gravity_(Eigen::Map<const Vec>(c.gravity.data())),
