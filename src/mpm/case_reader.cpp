@@ -316,14 +316,6 @@ void read_simple_shear(const CaseNode& o, MpmCase& c) {
   out.period = driver->function.time;
 }
 
-bool inside(const Box& box, const std::vector<double>& x) {
-  for (std::size_t d = 0; d < x.size(); ++d) {
-    if (x[d] < box.min[d] || x[d] > box.max[d])
-      return false;
-  }
-  return true;
-}
-
 //! output.rve_snapshots: {"at": [[x, y], ...], "every": n}; every position must lie in a body
 //! whose material has a microstructure (dem_rve).
 void read_rve_snapshots(const CaseNode& o, MpmCase& c) {
@@ -344,7 +336,7 @@ void read_rve_snapshots(const CaseNode& o, MpmCase& c) {
       s.fail(key, "expected " + std::to_string(c.dimension) + " numbers (a position)");
     const std::vector<double> x = v.get<std::vector<double>>();
     const bool on_dem = std::any_of(c.bodies.begin(), c.bodies.end(), [&](const Body& b) {
-      return c.materials[b.material]->has_snapshots() && inside(b.box, x);
+      return c.materials[b.material]->has_snapshots() && b.box.contains(x.data(), c.dimension, 0.0);
     });
     if (!on_dem)
       s.fail(key, "lies in no body of a dem_rve material");
