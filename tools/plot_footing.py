@@ -106,14 +106,16 @@ def main():
         require_columns(other, ("settlement", "q"), other_path)
         others.append((label, other["settlement"] / width, other["q"]))
     if surcharge is not None:
-        y, ylabel, scale = q / surcharge, r"normalised load $q/q_s$", surcharge
+        ylabel, scale = r"normalised load $q/q_s$", surcharge
     elif cu is not None:
-        y, ylabel, scale = q / cu, r"normalised load $q/c_u$", cu
+        ylabel, scale = r"normalised load $q/c_u$", cu
     else:
-        y, ylabel, scale = q / 1e3, r"footing pressure $q$ [kPa]", 1e3
+        ylabel, scale = r"footing pressure $q$ [kPa]", 1e3
+    normalised = surcharge is not None or cu is not None
+    y = q / scale
     peak = int(np.argmax(y))
     print(f"B = {width:g} m, peak q = {q[peak]:.6g} Pa at s/B = {settlement[peak]:.4g}, "
-          f"peak {ylabel.split('$')[1] if scale != 1e3 else 'q [kPa]'} = {y[peak]:.4g}")
+          f"peak {ylabel.split('$')[1] if normalised else 'q [kPa]'} = {y[peak]:.4g}")
     summary = read_json(os.path.join(directory, "summary.json"), required=False)
     if summary and "peak_q" in summary and not np.isclose(summary["peak_q"], q.max(), rtol=1e-3):
         print(f"note: summary.json peak_q = {summary['peak_q']:.6g} Pa differs from the "
@@ -124,7 +126,7 @@ def main():
     fig, ax = figures.subplots(figsize=(6.4, 4.6))
     ax.plot(settlement, y, color="k", label=args.label)
     for k, (label, s_other, q_other) in enumerate(others):
-        y_other = q_other / scale if scale != 1e3 else q_other / 1e3
+        y_other = q_other / scale
         k_peak = int(np.argmax(y_other))
         print(f"{label}: peak {y_other[k_peak]:.4g} at s/B = {s_other[k_peak]:.4g}")
         if args.window:
