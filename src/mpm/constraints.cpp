@@ -27,16 +27,13 @@ namespace {
 
 //! Replace upper-face nodes of periodic axes by their lower-face partners, without repeats.
 template <int D>
-std::vector<long> fold_periodic(const std::vector<long>& nodes, const Grid<D>& grid,
-                                const std::vector<bool>& periodic) {
+std::vector<long> fold_periodic(const std::vector<long>& nodes, const Grid<D>& grid) {
   std::vector<long> out;
   for (const long id : nodes) {
-    auto index = grid.node_index(id);
+    const auto index = grid.node_index(id);
     std::array<long, D> folded{};
-    for (int d = 0; d < D; ++d) {
-      const bool wraps = static_cast<std::size_t>(d) < periodic.size() && periodic[d];
-      folded[d] = wraps && index[d] == grid.cells(d) ? 0 : index[d];
-    }
+    for (int d = 0; d < D; ++d)
+      folded[d] = grid.wrap(index[d], d);
     const long partner = grid.node_id(folded);
     if (std::find(out.begin(), out.end(), partner) == out.end())
       out.push_back(partner);
@@ -47,10 +44,10 @@ std::vector<long> fold_periodic(const std::vector<long>& nodes, const Grid<D>& g
 }  // namespace
 
 template <int D>
-NodeConstraints<D>::NodeConstraints(const std::vector<Constraint>& constraints, const Grid<D>& grid,
-                                    const std::vector<bool>& periodic) {
+NodeConstraints<D>::NodeConstraints(const std::vector<Constraint>& constraints,
+                                    const Grid<D>& grid) {
   for (const Constraint& c : constraints)
-    sets_.push_back({c, fold_periodic(select_nodes(c.nodes, grid), grid, periodic)});
+    sets_.push_back({c, fold_periodic(select_nodes(c.nodes, grid), grid)});
   reactions_.assign(sets_.size(), Vec::Zero());
 }
 

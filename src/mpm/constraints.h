@@ -17,10 +17,9 @@ class NodeConstraints {
  public:
   using Vec = Eigen::Matrix<double, D, 1>;
 
-  //! Along a `periodic` axis the upper face is the lower one: a set naming an upper-face node
-  //! acts on its lower-face partner (the node that carries the mass).
-  NodeConstraints(const std::vector<Constraint>& constraints, const Grid<D>& grid,
-                  const std::vector<bool>& periodic = {});
+  //! Along a periodic axis of `grid` the upper face is the lower one: a set naming an
+  //! upper-face node acts on its lower-face partner (the node that carries the mass).
+  NodeConstraints(const std::vector<Constraint>& constraints, const Grid<D>& grid);
 
   //! Impose the constraints on `grid.velocity_new` at time `t`; prescribed velocities are
   //! scaled by `scale` (0 freezes them, in the gravity stage). With `record`, store the

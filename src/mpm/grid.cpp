@@ -3,8 +3,9 @@
 namespace mpm_lig::mpm {
 
 template <int D>
-Grid<D>::Grid(const Vec& origin, const Vec& size, const std::array<int, D>& cells)
-    : origin_(origin), size_(size), cells_(cells) {
+Grid<D>::Grid(const Vec& origin, const Vec& size, const std::array<int, D>& cells,
+              const std::array<bool, D>& periodic)
+    : origin_(origin), size_(size), cells_(cells), periodic_(periodic) {
   long count = 1;
   for (int d = 0; d < D; ++d) {
     cell_[d] = size[d] / cells[d];

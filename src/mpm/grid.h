@@ -10,13 +10,16 @@ namespace mpm_lig::mpm {
 
 //! Structured background grid: `cells[d]` cells of size `cell[d]` from `origin` along each
 //! axis, nodes numbered with x fastest. Holds the nodal fields the step rebuilds every time.
+//! Along a periodic axis the grid wraps around: node index cells[d] is node 0 again, so the
+//! upper-face nodes never carry mass.
 template <int D>
 class Grid {
  public:
   using Vec = Eigen::Matrix<double, D, 1>;
   using Index = Eigen::Matrix<long, D, 1>;
 
-  Grid(const Vec& origin, const Vec& size, const std::array<int, D>& cells);
+  Grid(const Vec& origin, const Vec& size, const std::array<int, D>& cells,
+       const std::array<bool, D>& periodic = {});
 
   const Vec& origin() const { return origin_; }
   const Vec& cell() const { return cell_; }
@@ -29,6 +32,11 @@ class Grid {
   long node_id(const std::array<long, D>& index) const;
   Index node_index(long id) const;
   Vec node_position(long id) const;
+  bool periodic(int d) const { return periodic_[d]; }
+  //! A node index along axis d as the grid sees it: modulo cells[d] on a periodic axis.
+  long wrap(long i, int d) const {
+    return periodic_[d] ? ((i % cells_[d]) + cells_[d]) % cells_[d] : i;
+  }
   //! Smallest cell size: sets the CFL time step.
   double min_cell() const { return cell_.minCoeff(); }
 
@@ -49,6 +57,7 @@ class Grid {
   Vec size_;
   Vec cell_;
   std::array<int, D> cells_;
+  std::array<bool, D> periodic_;
   std::array<long, D> stride_{};
 };
 

@@ -1,5 +1,6 @@
 #include "mpm/solver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -24,15 +25,22 @@ std::string describe_position(const V& x) {
 
 template <int D>
 Solver<D>::Solver(MpmCase& c)
-    : grid_(Eigen::Map<const Vec>(c.origin.data()), Eigen::Map<const Vec>(c.size.data()),
-            [&] {
-              std::array<int, D> cells{};
-              std::copy(c.cells.begin(), c.cells.end(), cells.begin());
-              return cells;
-            }()),
+    : grid_(
+          Eigen::Map<const Vec>(c.origin.data()), Eigen::Map<const Vec>(c.size.data()),
+          [&] {
+            std::array<int, D> cells{};
+            std::copy(c.cells.begin(), c.cells.end(), cells.begin());
+            return cells;
+          }(),
+          [&] {
+            std::array<bool, D> periodic{};
+            std::copy_n(c.periodic.begin(), std::min<std::size_t>(D, c.periodic.size()),
+                        periodic.begin());
+            return periodic;
+          }()),
       particles_(generate_particles<D>(c)),
       shape_(shape_registry().create(c.shape_function)),
-      constraints_(c.constraints, grid_, c.periodic),
+      constraints_(c.constraints, grid_),
       materials_(std::move(c.materials)),
       tractions_(c.tractions),
       gravity_(Eigen::Map<const Vec>(c.gravity.data())),
@@ -42,8 +50,6 @@ Solver<D>::Solver(MpmCase& c)
       case_damping_(c.damping),
       mass_scaling_(c.mass_scaling),
       volumetric_smoothing_(c.volumetric_smoothing) {
-  for (int d = 0; d < D && static_cast<std::size_t>(d) < c.periodic.size(); ++d)
-    periodic_[d] = c.periodic[d];
   for (const Footing& f : c.footings)
     footings_.emplace_back(f, grid_);
   traction_points_.resize(tractions_.size());
@@ -139,10 +145,9 @@ void Solver<D>::compute_shape_functions() {
       for (int d = 0; d < D; ++d) {
         // A GIMP point at a grid face reaches past it: the weight of the missing node goes
         // to the face node, which keeps the partition of unity (and of its gradient).
-        // Along a periodic axis the node index wraps: the upper face is the lower one.
-        const long n = grid_.cells(d);
-        index[d] = periodic_[d] ? ((w[d].first + k[d]) % n + n) % n
-                                : std::clamp<long>(w[d].first + k[d], 0, n);
+        // Along a periodic axis the node index wraps instead: the upper face is the lower one.
+        const long i = w[d].first + k[d];
+        index[d] = grid_.periodic(d) ? grid_.wrap(i, d) : std::clamp<long>(i, 0, grid_.cells(d));
         value *= w[d].value[k[d]];
         for (int e = 0; e < D; ++e)
           gradient[e] *= e == d ? w[d].gradient[k[d]] : w[d].value[k[d]];
@@ -163,7 +168,7 @@ void Solver<D>::compute_shape_functions() {
 template <int D>
 void Solver<D>::wrap_periodic(Vec& x) const {
   for (int d = 0; d < D; ++d) {
-    if (!periodic_[d])
+    if (!grid_.periodic(d))
       continue;
     const double length = grid_.size()[d];
     const double offset = x[d] - grid_.origin()[d];

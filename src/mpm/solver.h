@@ -94,8 +94,7 @@ class Solver {
   double case_damping_;
   double mass_scaling_;
   bool volumetric_smoothing_;
-  std::array<bool, D> periodic_{};  // per axis: the mesh wraps around
-  double prescribed_scale_ = 1.0;   // 0 in the gravity stage
+  double prescribed_scale_ = 1.0;  // 0 in the gravity stage
 
   double dt_ = 0.0;
   double time_ = 0.0;

@@ -131,18 +131,19 @@ TEST_P(PeriodicShear, LayerCarriesTheClosedFormSimpleShear) {
 INSTANTIATE_TEST_SUITE_P(Shapes, PeriodicShear, ::testing::Values("linear", "gimp"));
 
 TEST(PeriodicConstraints, UpperFaceNodesActOnTheirLowerPartners) {
-  const Grid<2> grid(Vec2(0.0, 0.0), Vec2(0.4, 0.8), {4, 8});
+  const Grid<2> grid(Vec2(0.0, 0.0), Vec2(0.4, 0.8), {4, 8}, {true, false});
+  const Grid<2> plain_grid(Vec2(0.0, 0.0), Vec2(0.4, 0.8), {4, 8});
   Constraint upper_column;  // the x = L column only: on a periodic mesh, the x = 0 one
   upper_column.nodes.box = {{0.4, 0.0}, {0.4, 0.8}};
   Constraint top_row;  // both seam nodes of the top row: one node after folding
   top_row.nodes.box = {{0.0, 0.8}, {0.4, 0.8}};
-  const NodeConstraints<2> folded({upper_column, top_row}, grid, {true, false});
-  const NodeConstraints<2> plain({upper_column, top_row}, grid);
+  const NodeConstraints<2> folded({upper_column, top_row}, grid);
+  const NodeConstraints<2> plain({upper_column, top_row}, plain_grid);
   ASSERT_EQ(folded.nodes(0).size(), 9u);
   for (const long id : folded.nodes(0))
     EXPECT_EQ(grid.node_index(id)[0], 0) << "node " << id;
   for (const long id : plain.nodes(0))
-    EXPECT_EQ(grid.node_index(id)[0], 4) << "node " << id;
+    EXPECT_EQ(plain_grid.node_index(id)[0], 4) << "node " << id;
   EXPECT_EQ(plain.nodes(1).size(), 5u);
   EXPECT_EQ(folded.nodes(1).size(), 4u);
 }
