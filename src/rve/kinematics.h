@@ -4,7 +4,7 @@
 
 namespace mpm_lig::rve {
 
-//! Result of mapping a physical deformation increment onto the engine's box (DESIGN.md §2).
+//! Result of mapping a physical deformation increment onto the engine's box (docs/DESIGN.md §2.2).
 struct BoxStep {
   Mat3 target;    //!< new upper-triangular box matrix R_new (columns a, b, c)
   Mat3 rotation;  //!< Q_inc: the rotation that stays outside the box (Q <- Q Q_inc)

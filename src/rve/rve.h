@@ -12,7 +12,7 @@
 
 namespace mpm_lig::rve {
 
-//! One periodic DEM packing driven by deformation increments (DESIGN.md §2).
+//! One periodic DEM packing driven by deformation increments (docs/DESIGN.md §2.2).
 //!
 //! The engine's box h is upper triangular (the RVE frame); the rotation Q from the RVE frame to
 //! the physical frame is kept here. A physical increment ΔF becomes ΔF' = Qᵀ ΔF Q, split as
