@@ -14,7 +14,7 @@ namespace mpm_lig {
 //! dying in mid-run: we report it (see `set_fatal_reporter`) and call MPI_Abort on
 //! MPI_COMM_WORLD, so the whole job ends at once with a non-zero code. MPI_Abort is guarded
 //! the same way: engines call it on their own communicator for errors found on one rank, and
-//! it then says which instance failed.
+//! it then says which instance failed (docs/DESIGN.md §3.5).
 class MpiSession {
  public:
   MpiSession(int* argc, char*** argv);

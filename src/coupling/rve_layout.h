@@ -18,7 +18,7 @@ namespace mpm_lig::coupling {
 //! spread over all ranks instead of loading the one that would own their block. The MPM
 //! itself is replicated on every rank, so after each update the owners' stresses are
 //! gathered to everyone, in RVE order: the result does not depend on the number of ranks as
-//! long as one RVE's own computation does not (one rank per RVE).
+//! long as one RVE's own computation does not (one rank per RVE). docs/DESIGN.md §7.
 class RveLayout {
  public:
   //! Collective over `world`. `ranks_per_rve` must divide the size of `world`.

@@ -14,6 +14,7 @@ namespace mpm_lig::dem::detail {
 //!    last output;
 //!  - capturing what the engine prints outside its screen (LIGGGHTS: "version 3 8" at every
 //!    read_restart, "Style collision" warnings at creation) into its output record.
+//! docs/DESIGN.md §3.5, §3.6.
 class GuardedEngine final : public Engine {
  public:
   //! Creates the module engine (under guard) with `create`.

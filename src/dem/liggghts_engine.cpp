@@ -59,7 +59,7 @@ class LiggghtsEngine final : public LibraryEngine {
   // so with zeros the ghost cutoff and periodic remapping collapse: no ghost atoms, atoms
   // lost, and a hang on 2 ranks, all without an error. Nothing resets these values later, so
   // setting them once per instance, before any command, is enough (tests/dem shows the defect
-  // without this and its absence with it).
+  // without this and its absence with it). docs/DESIGN.md §3.2.
   void correct_triclinic_lamda_box() {
     for (int i = 0; i < 3; ++i) {
       lmp_->domain->prd_lamda[i] = 1.0;

@@ -38,7 +38,7 @@ struct LoadedModule {
 //! (lammps_*, LAMMPS_NS::*) out of the global scope, so the other module can still bind to
 //! its own library. No RTLD_DEEPBIND: the engine library must keep resolving MPI_Finalize
 //! and MPI_Abort to the executable's guards (core/mpi_session.cpp), which DEEPBIND would
-//! bypass in favour of libmpi's.
+//! bypass in favour of libmpi's. docs/DESIGN.md §3.1.
 detail::CreateEngineFn load_module(const std::string& name) {
   static std::map<std::string, LoadedModule> loaded;
   if (auto it = loaded.find(name); it != loaded.end())

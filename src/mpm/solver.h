@@ -22,7 +22,7 @@ namespace mpm_lig::mpm {
 //!   update_grid (damping, acceleration, constraints, footing) → map_grid_to_particles
 //!   (PIC/FLIP velocity, position) → remap_momentum (MUSL: nodal velocity from the updated
 //!   point momenta, constraints again) → compute_deformation (L, dF, F, volume) →
-//!   update_stress (one batch call per material).
+//!   update_stress (one batch call per material). Diagram: docs/DESIGN.md §6.
 template <int D>
 class Solver {
  public:

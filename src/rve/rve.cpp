@@ -129,7 +129,7 @@ int Rve::substeps_for(const Mat3& effective_increment) {
   const SubstepSpec& s = spec_.substeps;
   if (s.fixed > 0)
     return s.fixed;
-  // Inertial number I = γ̇ d sqrt(ρ/p), with γ̇ = |ΔF_eff - I| / (n Δt).
+  // Inertial number I = γ̇ d sqrt(ρ/p), with γ̇ = |ΔF_eff - I| / (n Δt) (docs/DESIGN.md §8).
   const double strain = (effective_increment - Mat3::Identity()).norm();
   const double p = std::max(std::abs(last_mean_stress_), 1e3);
   const double d = 2.0 * spec_.radius.mean();
@@ -138,6 +138,7 @@ int Rve::substeps_for(const Mat3& effective_increment) {
   return static_cast<int>(std::min<double>(s.max, std::max<double>(s.min, std::ceil(n))));
 }
 
+// Streaming velocity: the box's affine velocity field in the grains (docs/DESIGN.md §2.4).
 void Rve::set_streaming(const Mat3& gradient) {
   if (!spec_.stream_velocity)
     return;
@@ -170,6 +171,7 @@ void Rve::reduce_cell_basis() {
     return;
   // Same lattice, other basis: grains are wrapped into the new cell; streaming velocities
   // depend on the cell, so they are taken out first and put back by the next increment.
+  // docs/DESIGN.md §2.3.
   set_streaming(Mat3::Zero());
   std::ostringstream command;
   command << "change_box all xy final " << fmt(reduced(0, 1));
@@ -194,7 +196,8 @@ void Rve::run_to_box(const Mat3& target, int steps) {
     fix << " xz final " << fmt(target(0, 2)) << " yz final " << fmt(target(1, 2));
   fix << " remap " << (spec_.stream_velocity ? "v" : "x") << " flip no";
   engine_->command(fix.str());
-  // `pre yes` (the default): `pre no` would keep the previous deformation target.
+  // `pre yes` (the default): `pre no` would keep the previous deformation target
+  // (docs/DESIGN.md §3.3).
   engine_->command("run " + std::to_string(steps));
   engine_->command("unfix mpm_deform");
 }
