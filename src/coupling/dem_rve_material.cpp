@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/mpi_session.h"
+#include "coupling/point_checkpoint.h"
 #include "rve/consolidation.h"
 #include "rve/snapshot.h"
 
@@ -238,53 +239,47 @@ std::string checkpoint_file(const std::string& dir, std::size_t point) {
 
 }  // namespace
 
-std::vector<double> DemRveMaterial::write_checkpoint(const std::string& dir) {
+void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::size_t points) {
   if (!layout_)
     throw std::logic_error(path_ + ": checkpoint before the first update");
+  if (points != points_)
+    throw std::logic_error(path_ + ": checkpoint of " + std::to_string(points) + " points, not " +
+                           std::to_string(points_));
   std::vector<double> owned;
   for (const std::size_t p : layout_->owned()) {
     rve::Rve& rve = *rves_[layout_->local_index(p)];
-    rve.write_checkpoint(checkpoint_file(dir, p));
-    const rve::Rve::State s = rve.state();
-    owned.insert(owned.end(), stress_[p].data(), stress_[p].data() + 9);
-    owned.push_back(substeps_[p]);
-    owned.insert(owned.end(), s.rotation.data(), s.rotation.data() + 9);
-    owned.insert(owned.end(), s.streaming.data(), s.streaming.data() + 9);
-    owned.push_back(s.particle_steps);
-    owned.push_back(s.last_mean_stress);
+    rve.write_checkpoint(checkpoint_file(out.folder(), p));
+    pack(PointCheckpoint{stress_[p], substeps_[p], rve.state()}, owned);
   }
-  return layout_->gather(owned, kCheckpointValues);
+  write_points(out, layout_->gather(owned, static_cast<int>(point_checkpoint_width())));
+  out.set("updates", static_cast<double>(updates_));
+  out.set("particle_steps", cost_.particle_steps);
 }
 
-void DemRveMaterial::restore_checkpoint(const std::string& dir, const std::vector<double>& rows,
-                                        long updates, double particle_steps) {
-  if (rows.size() != points_ * kCheckpointValues)
-    throw std::runtime_error(path_ + ": the checkpoint in '" + dir + "' holds " +
-                             std::to_string(rows.size() / kCheckpointValues) +
-                             " material points, the case has " + std::to_string(points_));
+void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
+                                        const std::vector<Mat3>& stress) {
+  if (stress.size() != points_)
+    throw std::logic_error(path_ + ": restore of " + std::to_string(stress.size()) +
+                           " points, not " + std::to_string(points_));
+  const std::vector<double> rows = read_points(in, points_);
   const double start = MPI_Wtime();
   layout_ = std::make_unique<RveLayout>(comm_, ranks_per_rve_, points_);
   stress_.resize(points_);
   substeps_.resize(points_);
   rves_.clear();
   for (std::size_t p = 0; p < points_; ++p) {
-    const double* row = rows.data() + p * kCheckpointValues;
-    stress_[p] = Eigen::Map<const Mat3>(row);
-    substeps_[p] = row[9];
+    const PointCheckpoint saved = unpack(rows.data() + p * point_checkpoint_width());
+    stress_[p] = saved.stress;
+    substeps_[p] = saved.substeps;
     if (!layout_->owns(p))
       continue;
-    rves_.push_back(rve::Rve::from_restart(spec_, checkpoint_file(dir, p), layout_->group_comm(),
-                                           point_label(p)));
-    rve::Rve::State s;
-    s.rotation = Eigen::Map<const Mat3>(row + 10);
-    s.streaming = Eigen::Map<const Mat3>(row + 19);
-    s.particle_steps = row[28];
-    s.last_mean_stress = row[29];
-    rves_.back()->restore(s);
+    rves_.push_back(rve::Rve::from_restart(spec_, checkpoint_file(in.folder(), p),
+                                           layout_->group_comm(), point_label(p)));
+    rves_.back()->restore(saved.rve);
   }
-  updates_ = updates;
+  updates_ = static_cast<long>(in.get("updates"));
   cost_.simulations = points_;
-  cost_.particle_steps = particle_steps;
+  cost_.particle_steps = in.get("particle_steps");
   cost_.preparation_seconds += MPI_Wtime() - start;
 }
 

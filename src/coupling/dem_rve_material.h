@@ -56,15 +56,12 @@ class DemRveMaterial final : public materials::Material {
   void write_snapshot(std::size_t point, const std::string& prefix) override;
   materials::MaterialCost cost() const override;
 
-  //! Values per point in a checkpoint row: stress (9), DEM steps, Q (9), streaming (9),
-  //! particle-steps, last mean stress.
-  static constexpr int kCheckpointValues = 30;
-  //! Collective: every owned RVE writes `dir/point_<i>.restart` (the folder must exist);
-  //! returns every point's row (all ranks). Only after the first update.
-  std::vector<double> write_checkpoint(const std::string& dir);
-  //! Collective: the RVEs again from `dir` and the rows of write_checkpoint, before any update.
-  void restore_checkpoint(const std::string& dir, const std::vector<double>& rows, long updates,
-                          double particle_steps);
+  //! Collective: every owned RVE writes `point_<i>.restart` in out.folder(); every point's
+  //! named fields (PointCheckpoint) go to `out`. Only after the first update.
+  void write_checkpoint(materials::CheckpointWriter& out, std::size_t points) override;
+  //! Collective: the RVEs again from the checkpoint, before any update.
+  void restore_checkpoint(const materials::CheckpointReader& in,
+                          const std::vector<Mat3>& stress) override;
   //! update() calls so far (MPM steps).
   long updates() const { return updates_; }
 

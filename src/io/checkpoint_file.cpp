@@ -29,6 +29,10 @@ void CheckpointFile::write(const std::string& name, const std::vector<double>& v
     throw std::runtime_error("HDF5: cannot write '" + name + "' in '" + filename_ + "'");
 }
 
+bool CheckpointFile::has(const std::string& name) const {
+  return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
+}
+
 std::vector<double> CheckpointFile::read(const std::string& name) const {
   H5Dataset set(check(H5Dopen2(file_, name.c_str(), H5P_DEFAULT),
                       "find '" + name + "' in '" + filename_ + "'"));

@@ -19,6 +19,8 @@ class CheckpointFile {
 
   //! Store `values` as the 1-D dataset `name`.
   void write(const std::string& name, const std::vector<double>& values);
+  //! Whether the dataset `name` exists.
+  bool has(const std::string& name) const;
   //! The 1-D dataset `name`; throws naming the file if it is missing.
   std::vector<double> read(const std::string& name) const;
   //! A scalar attribute of the file's root group.

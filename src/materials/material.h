@@ -10,6 +10,7 @@
 #include "core/case_node.h"
 #include "core/registry.h"
 #include "core/tensor.h"
+#include "materials/checkpoint_io.h"
 
 namespace mpm_lig::materials {
 
@@ -71,14 +72,21 @@ class Material {
   virtual std::vector<std::string> state_names() const { return {}; }
   //! Value of state variable `k` of `point`.
   virtual double state(std::size_t /*point*/, std::size_t /*k*/) const { return 0.0; }
-  //! Whether stress and state_names() values are the whole state of a point, so that a
-  //! checkpoint can restore it with set_stress() and set_state() (a DEM material saves its
-  //! RVEs itself and says so too).
+  //! Whether write_checkpoint() saves everything a point's future depends on. By default that
+  //! holds when the stress is the whole state (no state_names()).
   virtual bool checkpointable() const { return state_names().empty(); }
-  //! Restore state variable `k` of `point` (materials that are checkpointable with state).
+  //! Restore state variable `k` of `point` (used by the default restore_checkpoint()).
   virtual void set_state(std::size_t /*point*/, std::size_t /*k*/, double /*value*/) {
     throw std::logic_error(type() + ": set_state() on a material without restorable state");
   }
+  //! Collective: save the state of this material's `points` points beyond the stresses the
+  //! MPM saves itself. Default: the state_names() values, point by point ("state").
+  virtual void write_checkpoint(CheckpointWriter& out, std::size_t points);
+  //! Collective, on a freshly prepared material with its points added and before any update:
+  //! take back what write_checkpoint() saved; `stress[i]` is point i's saved stress. Throws
+  //! naming the checkpoint when it does not fit this material. Default: restore_stress() and
+  //! set_state() from "state".
+  virtual void restore_checkpoint(const CheckpointReader& in, const std::vector<Mat3>& stress);
   //! Cost counters (zero for continuum laws).
   virtual MaterialCost cost() const { return {}; }
   //! Whether a point has a microstructure to draw (a DEM point's RVE).

@@ -4,7 +4,6 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "coupling/dem_rve_material.h"
 #include "io/checkpoint_file.h"
 
 namespace mpm_lig::mpm {
@@ -14,10 +13,6 @@ namespace fs = std::filesystem;
 
 std::string material_name(const MpmCase& c, std::size_t m) {
   return "m" + std::to_string(c.material_ids[m]);
-}
-
-coupling::DemRveMaterial* as_dem(const std::unique_ptr<materials::Material>& m) {
-  return dynamic_cast<coupling::DemRveMaterial*>(m.get());
 }
 
 //! Flatten fixed-size Eigen objects (vectors, 3x3 tensors) into one array.
@@ -46,41 +41,59 @@ std::string read_latest(const std::string& run_dir) {
   return name;
 }
 
-//! Every state variable of material `m`'s points, point by point in particle order.
-template <int D>
-std::vector<double> material_state(const Solver<D>& solver, std::size_t m) {
-  const materials::Material& material = *solver.materials()[m];
-  const std::size_t names = material.state_names().size();
-  const Particles<D>& p = solver.particles();
-  std::vector<double> values;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    if (p.material[k] != static_cast<int>(m))
-      continue;
-    for (std::size_t s = 0; s < names; ++s)
-      values.push_back(material.state(p.material_point[k], s));
+//! Material `m`'s part of a checkpoint: its arrays are "m<id>_<name>" in mpm.h5 (written
+//! by rank 0), its files go to the folder m<id>/.
+class MaterialWriter final : public materials::CheckpointWriter {
+ public:
+  MaterialWriter(io::CheckpointFile* file, std::string prefix, std::string folder)
+      : file_(file), prefix_(std::move(prefix)), folder_(std::move(folder)) {}
+  std::string folder() const override { return folder_; }
+  void write(const std::string& name, const std::vector<double>& values) override {
+    if (file_)
+      file_->write(prefix_ + name, values);
   }
-  return values;
-}
+  void set(const std::string& name, double value) override {
+    if (file_)
+      file_->set(prefix_ + name, value);
+  }
 
+ private:
+  io::CheckpointFile* file_;  // null on ranks other than 0
+  std::string prefix_, folder_;
+};
+
+class MaterialReader final : public materials::CheckpointReader {
+ public:
+  MaterialReader(const io::CheckpointFile& file, std::string prefix, std::string folder)
+      : file_(file), prefix_(std::move(prefix)), folder_(std::move(folder)) {}
+  std::string folder() const override { return folder_; }
+  bool has(const std::string& name) const override { return file_.has(prefix_ + name); }
+  std::vector<double> read(const std::string& name) const override {
+    return file_.read(prefix_ + name);
+  }
+  double get(const std::string& name) const override { return file_.get(prefix_ + name); }
+  std::string describe() const override {
+    return "checkpoint '" + fs::path(folder_).parent_path().string() + "', material " +
+           fs::path(folder_).filename().string();
+  }
+
+ private:
+  const io::CheckpointFile& file_;
+  std::string prefix_, folder_;
+};
+
+//! The stresses of material `m`'s points, by point index.
 template <int D>
-void restore_material_state(Solver<D>& solver, std::size_t m, const std::vector<double>& values,
-                            const std::string& dir) {
-  materials::Material& material = *solver.materials()[m];
-  const std::size_t names = material.state_names().size();
-  const Particles<D>& p = solver.particles();
-  std::size_t next = 0;
+std::vector<Mat3> material_stresses(const Particles<D>& p, std::size_t m) {
+  std::vector<Mat3> stress;
   for (std::size_t k = 0; k < p.size(); ++k) {
     if (p.material[k] != static_cast<int>(m))
       continue;
-    material.restore_stress(p.material_point[k], p.stress[k]);
-    for (std::size_t s = 0; s < names; ++s) {
-      if (next >= values.size())
-        throw std::runtime_error("checkpoint '" + dir + "' does not match the case's points");
-      material.set_state(p.material_point[k], s, values[next++]);
-    }
+    if (p.material_point[k] >= stress.size())
+      stress.resize(p.material_point[k] + 1, Mat3::Zero());
+    stress[p.material_point[k]] = p.stress[k];
   }
-  if (next != values.size())
-    throw std::runtime_error("checkpoint '" + dir + "' does not match the case's points");
+  return stress;
 }
 
 }  // namespace
@@ -112,18 +125,9 @@ void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderS
   if (rank == 0)
     file = std::make_unique<io::CheckpointFile>(dir + "/mpm.h5", io::CheckpointFile::Mode::create);
   for (std::size_t m = 0; m < solver.materials().size(); ++m) {
-    coupling::DemRveMaterial* dem = as_dem(solver.materials()[m]);
-    if (!dem) {
-      if (file)
-        file->write(material_name(c, m) + "_state", material_state(solver, m));
-      continue;
-    }
-    const std::vector<double> rows = dem->write_checkpoint(dir + "/" + material_name(c, m));
-    if (file) {
-      file->write(material_name(c, m) + "_rows", rows);
-      file->set(material_name(c, m) + "_updates", static_cast<double>(dem->updates()));
-      file->set(material_name(c, m) + "_particle_steps", dem->cost().particle_steps);
-    }
+    MaterialWriter out(file.get(), material_name(c, m) + "_", dir + "/" + material_name(c, m));
+    solver.materials()[m]->write_checkpoint(out,
+                                            material_stresses(solver.particles(), m).size());
   }
   if (file) {
     const Particles<D>& p = solver.particles();
@@ -188,15 +192,8 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
   }
   solver.restore_clock(file.get("time"), static_cast<long>(file.get("steps")));
   for (std::size_t m = 0; m < solver.materials().size(); ++m) {
-    const auto& material = solver.materials()[m];
-    if (coupling::DemRveMaterial* dem = as_dem(material)) {
-      const std::string n = material_name(c, m);
-      dem->restore_checkpoint(dir + "/" + n, file.read(n + "_rows"),
-                              static_cast<long>(file.get(n + "_updates")),
-                              file.get(n + "_particle_steps"));
-      continue;
-    }
-    restore_material_state(solver, m, file.read(material_name(c, m) + "_state"), dir);
+    const MaterialReader in(file, material_name(c, m) + "_", dir + "/" + material_name(c, m));
+    solver.materials()[m]->restore_checkpoint(in, material_stresses(p, m));
   }
   MPI_Barrier(comm);
   RecorderState r;

@@ -18,14 +18,14 @@ struct RecorderState {
 //! Checkpoints of a run in `run_dir/checkpoints/`:
 //!
 //!     step_<n>/mpm.h5          particle arrays (exact doubles), clock, footings, recorder
-//!                              state, each dem_rve material's per-point rows (attributes and
-//!                              datasets named m<id>_...)
-//!     step_<n>/m<id>/point_<i>.restart   every RVE's engine restart (contact history kept)
+//!                              state, and what each material saves (Material::write_checkpoint)
+//!                              as datasets and attributes named m<id>_...
+//!     step_<n>/m<id>/          files of material <id> (a dem_rve: point_<i>.restart, every
+//!                              RVE's engine restart with its contact history)
 //!     latest                   text: the name of the last complete step folder
 //!
 //! `latest` is replaced atomically (rename) after all ranks finished writing; the previous
 //! step folder is removed only then, so a kill at any moment leaves one complete checkpoint.
-//! Materials other than dem_rve must have no state beyond their stress (elastic).
 template <int D>
 void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderState& recorder,
                       const std::string& run_dir, MPI_Comm comm);
