@@ -88,8 +88,7 @@ std::vector<double> read_points(const materials::CheckpointReader& in, std::size
       throw mismatch(std::string("no field '") + f.name + "'");
     const std::vector<double> values = in.read(f.name);
     if (values.size() != points * f.width)
-      throw std::runtime_error(in.describe() + " holds " +
-                               std::to_string(values.size() / f.width) +
+      throw std::runtime_error(in.describe() + " holds " + std::to_string(values.size() / f.width) +
                                " DEM points, the case has " + std::to_string(points));
     for (std::size_t p = 0; p < points; ++p)
       std::copy_n(values.data() + p * f.width, f.width, rows.data() + p * width + offset);

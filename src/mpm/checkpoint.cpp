@@ -126,8 +126,7 @@ void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderS
     file = std::make_unique<io::CheckpointFile>(dir + "/mpm.h5", io::CheckpointFile::Mode::create);
   for (std::size_t m = 0; m < solver.materials().size(); ++m) {
     MaterialWriter out(file.get(), material_name(c, m) + "_", dir + "/" + material_name(c, m));
-    solver.materials()[m]->write_checkpoint(out,
-                                            material_stresses(solver.particles(), m).size());
+    solver.materials()[m]->write_checkpoint(out, material_stresses(solver.particles(), m).size());
   }
   if (file) {
     const Particles<D>& p = solver.particles();
