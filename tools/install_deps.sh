@@ -7,7 +7,7 @@ packages=(
   openmpi-bin libopenmpi-dev
   liggghts libliggghts-dev
   lammps liblammps-dev
-  libeigen3-dev nlohmann-json3-dev libhdf5-dev libgtest-dev
+  libeigen3-dev nlohmann-json3-dev libhdf5-dev libssl-dev libgtest-dev
   python3 python3-numpy python3-matplotlib python3-h5py
 )
 

@@ -25,15 +25,16 @@ constexpr const char* kUsage = R"(usage:
 
   Runs under MPI: mpirun -np N mpm_lig CASE.json
   --output DIR   where results go (default: ./<case name>_out)
-  --resume DIR   continue from the last checkpoint in DIR
+  --resume DIR   continue the run in DIR from its last checkpoint; the results continue
+                 in DIR too (--output, if given as well, must name the same folder)
 
 Exit codes: 0 done, 1 run failed, 2 bad case or command line, 3 a DEM engine failed.
 )";
 
 struct CommandLine {
   std::string case_file;
-  std::string output_dir;
-  std::string resume_dir;
+  std::optional<std::string> output_dir;
+  std::optional<std::string> resume_dir;
   bool validate_only = false;
   bool help = false;
 };
@@ -96,8 +97,31 @@ std::unique_ptr<mpm_lig::Analysis> load_analysis(const std::string& case_file) {
   return analysis;
 }
 
-std::string default_output_dir(const std::string& case_file) {
-  return std::filesystem::path(case_file).stem().string() + "_out";
+//! The one rule for the folder a run writes to: --output DIR, else for a resumed run the
+//! folder it resumes from (which must exist: nothing is created for a resume), else
+//! ./<case name>_out. Refused (a message for the user): an empty name, and --output naming
+//! another folder than --resume (the run continues where its checkpoint and earlier results
+//! are; copying them elsewhere first is the user's choice, not a silent one).
+std::string run_directory(const CommandLine& cl, std::string& refusal) {
+  namespace fs = std::filesystem;
+  if (cl.output_dir && cl.output_dir->empty())
+    refusal = "--output: the folder name is empty";
+  else if (cl.resume_dir && cl.resume_dir->empty())
+    refusal = "--resume: the folder name is empty";
+  else if (cl.resume_dir && !fs::is_directory(*cl.resume_dir))
+    refusal = "--resume " + *cl.resume_dir + ": no such folder";
+  else if (cl.resume_dir && cl.output_dir &&
+           fs::weakly_canonical(*cl.output_dir) != fs::weakly_canonical(*cl.resume_dir))
+    refusal = "--output " + *cl.output_dir + " and --resume " + *cl.resume_dir +
+              " name different folders: a resumed run continues in the folder it resumes "
+              "from (copy that folder first to keep it unchanged)";
+  if (!refusal.empty())
+    return "";
+  if (cl.resume_dir)
+    return *cl.resume_dir;
+  if (cl.output_dir)
+    return *cl.output_dir;
+  return fs::path(cl.case_file).stem().string() + "_out";
 }
 
 }  // namespace
@@ -123,9 +147,19 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "mpm_lig: %s: %s\n", cl->case_file.c_str(), e.what());
     return mpm_lig::kExitBadCase;
   }
-  if (!cl->resume_dir.empty() && !analysis->supports_resume()) {
+  if (cl->resume_dir && !analysis->supports_resume()) {
     if (root_rank)
       std::fprintf(stderr, "mpm_lig: --resume: this analysis type writes no checkpoints\n");
+    return mpm_lig::kExitBadCase;
+  }
+  mpm_lig::RunContext context;
+  context.case_file = cl->case_file;
+  std::string refusal;
+  context.output_dir = run_directory(*cl, refusal);
+  context.resume = cl->resume_dir.has_value();
+  if (!refusal.empty()) {
+    if (root_rank)
+      std::fprintf(stderr, "mpm_lig: %s\n", refusal.c_str());
     return mpm_lig::kExitBadCase;
   }
   if (cl->validate_only) {
@@ -134,17 +168,16 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  mpm_lig::RunContext context;
-  context.case_file = cl->case_file;
-  // A resumed run continues in the folder it resumes from unless told otherwise.
-  const std::string& chosen = cl->output_dir.empty() ? cl->resume_dir : cl->output_dir;
-  context.output_dir = chosen.empty() ? default_output_dir(cl->case_file) : chosen;
-  context.resume_dir = cl->resume_dir;
   try {
-    if (root_rank)
+    if (root_rank && !context.resume)
       std::filesystem::create_directories(context.output_dir);
     MPI_Barrier(MPI_COMM_WORLD);
     analysis->run(context);
+  } catch (const mpm_lig::ResumeError& e) {
+    // Refused on every rank alike, before any file was touched.
+    if (root_rank)
+      std::fprintf(stderr, "mpm_lig: --resume %s: %s\n", context.output_dir.c_str(), e.what());
+    return mpm_lig::kExitBadCase;
   } catch (const mpm_lig::CaseError& e) {
     // Some problems can only be seen at run time (a restart file that is not there).
     mpm_lig::abort_job(cl->case_file + ": " + e.what(), mpm_lig::kExitBadCase);

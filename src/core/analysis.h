@@ -12,9 +12,11 @@ namespace mpm_lig {
 
 //! What every analysis gets to run: where to write and on which ranks.
 struct RunContext {
-  std::string case_file;   //!< the case file as given on the command line
-  std::string output_dir;  //!< created by the application before run()
-  std::string resume_dir;  //!< empty unless --resume DIR was given
+  std::string case_file;  //!< the case file as given on the command line
+  //! The run's one folder (results, checkpoints, packings); created by the application
+  //! before run() unless the run resumes (then it is the folder given to --resume).
+  std::string output_dir;
+  bool resume = false;  //!< continue from the last checkpoint in output_dir
   MPI_Comm comm = MPI_COMM_WORLD;
 };
 
@@ -25,7 +27,7 @@ class Analysis {
  public:
   virtual ~Analysis() = default;
   virtual void run(const RunContext& context) = 0;
-  //! Whether run() can continue from a checkpoint folder (RunContext::resume_dir).
+  //! Whether run() can continue from a checkpoint (RunContext::resume).
   virtual bool supports_resume() const { return false; }
 };
 

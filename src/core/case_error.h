@@ -19,6 +19,13 @@ class CaseError : public std::runtime_error {
   std::string path_;
 };
 
+//! A checkpoint `--resume` cannot continue from (damaged, written for another case, ...):
+//! bad input like a bad case, refused before any result file is touched (exit 2).
+class ResumeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 //! Exit code for a case that fails validation (bad input).
 inline constexpr int kExitBadCase = 2;
 

@@ -43,6 +43,17 @@ Packing packing_from(const double* v, const std::string& restart_file) {
   return p;
 }
 
+//! Run `work` on one RVE's files; a failure ends the whole job at once with `what` and the
+//! reason: the other ranks are about to wait for this one in a collective call.
+template <class Work>
+auto or_end_job(const std::string& what, Work&& work) {
+  try {
+    return work();
+  } catch (const std::exception& e) {
+    abort_job(what + ": " + e.what(), 1);
+  }
+}
+
 }  // namespace
 
 DemRveMaterial::DemRveMaterial(const CaseNode& node) : path_(node.path()) {
@@ -99,9 +110,11 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
       spec.seed += k;
       rve = rve::Rve::generate(spec, layout.group_comm(), label);
       rve::consolidate(*rve);
-      rve->write_restart(files[k]);
+      or_end_job(label + " not saved", [&] { rve->write_restart(files[k]); });
     } else {
-      rve = rve::Rve::from_restart(spec_, files[k], layout.group_comm(), label);
+      rve = or_end_job(label + " not loaded", [&] {
+        return rve::Rve::from_restart(spec_, files[k], layout.group_comm(), label);
+      });
     }
     Packing p;
     const rve::Observables now = rve->observe();
@@ -162,8 +175,10 @@ void DemRveMaterial::create_rves() {
   for (std::size_t p = 0; p < points_; ++p)
     stress_[p] = initial_stress(p);
   for (const std::size_t p : layout_->owned()) {
-    rves_.push_back(rve::Rve::from_restart(spec_, packings_[packing_of(p)].restart_file,
-                                           layout_->group_comm(), point_label(p)));
+    rves_.push_back(or_end_job(point_label(p) + " not cloned", [&] {
+      return rve::Rve::from_restart(spec_, packings_[packing_of(p)].restart_file,
+                                    layout_->group_comm(), point_label(p));
+    }));
   }
   cost_.simulations = points_;
   cost_.preparation_seconds += MPI_Wtime() - start;
@@ -248,7 +263,8 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
   std::vector<double> owned;
   for (const std::size_t p : layout_->owned()) {
     rve::Rve& rve = *rves_[layout_->local_index(p)];
-    rve.write_checkpoint(checkpoint_file(out.folder(), p));
+    or_end_job(point_label(p) + ": checkpoint not written (the previous one is kept)",
+               [&] { rve.write_checkpoint(checkpoint_file(out.folder(), p)); });
     pack(PointCheckpoint{stress_[p], substeps_[p], rve.state()}, owned);
   }
   write_points(out, layout_->gather(owned, static_cast<int>(point_checkpoint_width())));
@@ -273,8 +289,10 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     substeps_[p] = saved.substeps;
     if (!layout_->owns(p))
       continue;
-    rves_.push_back(rve::Rve::from_restart(spec_, checkpoint_file(in.folder(), p),
-                                           layout_->group_comm(), point_label(p)));
+    rves_.push_back(or_end_job(in.describe() + ": " + point_label(p) + " not restored", [&] {
+      return rve::Rve::from_restart(spec_, checkpoint_file(in.folder(), p), layout_->group_comm(),
+                                    point_label(p));
+    }));
     rves_.back()->restore(saved.rve);
   }
   updates_ = static_cast<long>(in.get("updates"));

@@ -1,5 +1,6 @@
 #include "io/checkpoint_file.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "io/hdf5_handle.h"
@@ -68,6 +69,53 @@ void CheckpointFile::close() {
   file_ = -1;
   if (status < 0)
     throw std::runtime_error("HDF5: cannot close '" + filename_ + "'");
+}
+
+namespace {
+
+//! Names of the datasets or of the attributes of the root group of `file`.
+std::vector<std::string> member_names(hid_t file, bool attributes) {
+  std::vector<std::string> names;
+  if (attributes) {
+    H5Aiterate2(
+        file, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+        [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+          static_cast<std::vector<std::string>*>(out)->push_back(name);
+          return 0;
+        },
+        &names);
+  } else {
+    H5Literate(
+        file, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+        [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+          static_cast<std::vector<std::string>*>(out)->push_back(name);
+          return 0;
+        },
+        &names);
+  }
+  return names;
+}
+
+bool all_finite(const std::vector<double>& values) {
+  for (const double v : values) {
+    if (!std::isfinite(v))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string CheckpointFile::first_non_finite() const {
+  for (const std::string& name : member_names(file_, false)) {
+    if (!all_finite(read(name)))
+      return name;
+  }
+  for (const std::string& name : member_names(file_, true)) {
+    if (!std::isfinite(get(name)))
+      return name;
+  }
+  return "";
 }
 
 void copy_steps_up_to(const std::string& source, const std::string& target, long last_step) {

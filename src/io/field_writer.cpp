@@ -68,27 +68,46 @@ std::vector<double> padded_xyz(const std::vector<Eigen::Matrix<double, D, 1>>& p
 
 }  // namespace
 
-FieldWriter::FieldWriter(const std::string& directory, const std::string& basename) {
-  quiet_hdf5_errors();
+FieldWriter::FieldWriter(const std::string& directory, const std::string& basename)
+    : FieldWriter(directory, basename, {}) {
   std::filesystem::create_directories(directory);
-  const std::filesystem::path dir(directory);
-  h5_name_ = basename + ".h5";
-  h5_path_ = (dir / h5_name_).string();
-  xdmf_path_ = (dir / (basename + ".xdmf")).string();
   H5File file(check(H5Fcreate(h5_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                     "create '" + h5_path_ + "'"));
   replace_file(xdmf_path_, xdmf_text(h5_name_, steps_));
 }
 
+FieldWriter::FieldWriter(const std::string& directory, const std::string& basename,
+                         std::vector<XdmfStep> steps)
+    : steps_(std::move(steps)) {
+  quiet_hdf5_errors();
+  const std::filesystem::path dir(directory);
+  h5_name_ = basename + ".h5";
+  h5_path_ = (dir / h5_name_).string();
+  xdmf_path_ = (dir / (basename + ".xdmf")).string();
+}
+
 std::unique_ptr<FieldWriter> FieldWriter::resume(const std::string& directory,
                                                  const std::string& basename, long last_step) {
+  quiet_hdf5_errors();
   const std::filesystem::path earlier = std::filesystem::path(directory) / (basename + ".h5");
-  const std::filesystem::path kept = earlier.string() + ".before_resume";
-  std::filesystem::rename(earlier, kept);
-  auto writer = std::make_unique<FieldWriter>(directory, basename);
-  copy_steps_up_to(kept.string(), writer->h5_path_, last_step);
-  std::filesystem::remove(kept);
-  writer->steps_ = read_field_steps(writer->h5_path_);
+  if (!std::filesystem::exists(earlier))
+    return std::make_unique<FieldWriter>(directory, basename);
+  // The steps to keep are copied beside the file, checked, and only then renamed over it: a
+  // failure at any point (full disk, kill) leaves the earlier file whole for the next try.
+  const std::filesystem::path kept = earlier.string() + ".resume_tmp";
+  std::vector<XdmfStep> steps;
+  try {
+    copy_steps_up_to(earlier.string(), kept.string(), last_step);
+    steps = read_field_steps(kept.string());
+    std::filesystem::rename(kept, earlier);
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    if (!std::filesystem::is_directory(kept))
+      std::filesystem::remove(kept, ignored);
+    throw std::runtime_error("cannot continue '" + earlier.string() +
+                             "' (left unchanged): " + e.what());
+  }
+  std::unique_ptr<FieldWriter> writer(new FieldWriter(directory, basename, steps));
   replace_file(writer->xdmf_path_, xdmf_text(writer->h5_name_, writer->steps_));
   return writer;
 }

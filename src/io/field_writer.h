@@ -32,7 +32,8 @@ class FieldWriter {
   //! Creates `directory` if needed and starts an empty `<basename>.h5` (an older one is replaced).
   FieldWriter(const std::string& directory, const std::string& basename = "results");
   //! Continue the fields of an earlier run in `directory`: its steps up to `last_step` are
-  //! kept (later ones dropped) and stay in the XDMF index with the new ones.
+  //! kept (later ones dropped) and stay in the XDMF index with the new ones. Without an
+  //! earlier file, starts one. A failure leaves the earlier file as it was.
   static std::unique_ptr<FieldWriter> resume(const std::string& directory,
                                              const std::string& basename, long last_step);
   ~FieldWriter();
@@ -69,6 +70,9 @@ class FieldWriter {
   static std::string group_name(long step);
 
  private:
+  //! Continue `<basename>.h5` in `directory`, which holds `steps`.
+  FieldWriter(const std::string& directory, const std::string& basename,
+              std::vector<XdmfStep> steps);
   struct Open;
   Open& open_step(long step, double time, std::size_t points);
   Open& current(const std::string& field, std::size_t count);

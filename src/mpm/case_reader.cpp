@@ -369,6 +369,7 @@ void read_output(const CaseNode& root, MpmCase& c) {
 
 MpmCase read_case(const CaseNode& root, const materials::MaterialRegistry& registry) {
   MpmCase c;
+  c.document = root.json();
   c.title = root.get_or<std::string>("title", "");
   c.dimension = root.get<int>("dimension");
   if (c.dimension != 2 && c.dimension != 3)

@@ -84,6 +84,8 @@ struct RveSnapshotOutput {
 //! Everything an MPM run needs, validated; dimension-independent plain data.
 struct MpmCase {
   std::string title;
+  //! The case as read: a checkpoint keeps it, and a resume compares it key by key.
+  nlohmann::json document;
   int dimension = 2;
 
   // analysis

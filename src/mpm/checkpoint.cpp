@@ -4,7 +4,10 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/mpi_session.h"
 #include "io/checkpoint_file.h"
+#include "io/file_digest.h"
+#include "mpm/checkpoint_folder.h"
 
 namespace mpm_lig::mpm {
 namespace {
@@ -31,14 +34,6 @@ void unflatten(const std::vector<double>& flat, std::vector<T>& values, const st
     throw std::runtime_error("checkpoint: '" + what + "' does not match the case's points");
   for (std::size_t k = 0; k < values.size(); ++k)
     values[k] = Eigen::Map<const T>(flat.data() + k * T::SizeAtCompileTime);
-}
-
-std::string read_latest(const std::string& run_dir) {
-  std::ifstream in(run_dir + "/checkpoints/latest");
-  std::string name;
-  if (!(in >> name))
-    throw std::runtime_error("no checkpoint in '" + run_dir + "' (checkpoints/latest is missing)");
-  return name;
 }
 
 //! Material `m`'s part of a checkpoint: its arrays are "m<id>_<name>" in mpm.h5 (written
@@ -96,6 +91,67 @@ std::vector<Mat3> material_stresses(const Particles<D>& p, std::size_t m) {
   return stress;
 }
 
+template <int D>
+void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState& recorder,
+                 io::CheckpointFile& file, const std::string& dir) {
+  const Particles<D>& p = solver.particles();
+  file.write("position", flatten(p.position));
+  file.write("reference", flatten(p.reference));
+  file.write("velocity", flatten(p.velocity));
+  file.write("deformation", flatten(p.deformation));
+  file.write("stress", flatten(p.stress));
+  file.write("volume", p.volume);
+  std::vector<double> footings;
+  for (const auto& f : solver.footings()) {
+    footings.push_back(f.settlement());
+    footings.push_back(f.load());
+    footings.insert(footings.end(), f.reaction().data(), f.reaction().data() + D);
+  }
+  file.write("footings", footings);
+  file.set("time", solver.time());
+  file.set("steps", static_cast<double>(solver.steps()));
+  file.set("history_rows", static_cast<double>(recorder.history_rows));
+  file.set("peak_q", recorder.peak_q);
+  file.close();
+  std::ofstream out(dir + "/" + CheckpointFolder::kCase);
+  out << c.document.dump(1) << '\n';
+  out.close();
+  if (!out)
+    throw std::runtime_error("cannot write '" + dir + "/" + CheckpointFolder::kCase + "'");
+}
+
+//! Rank 0, once every rank has written its files: checksums, then `latest` (atomically), then
+//! the previous checkpoint goes. A kill at any moment leaves one complete checkpoint.
+void commit(const std::string& run_dir, const std::string& name) {
+  const std::string root = CheckpointFolder::root(run_dir);
+  io::write_manifest(root + "/" + name, CheckpointFolder::kManifest);
+  const std::string previous = CheckpointFolder::latest_name_or_empty(run_dir);
+  {
+    std::ofstream out(root + "/latest.tmp");
+    out << name << '\n';
+    out.close();
+    if (!out)
+      throw std::runtime_error("cannot write '" + root + "/latest.tmp'");
+  }
+  fs::rename(root + "/latest.tmp", root + "/latest");
+  if (!previous.empty() && previous != name)
+    fs::remove_all(root + "/" + previous);
+}
+
+//! Run rank 0's part of a checkpoint; a failure ends the job (the other ranks wait for it).
+template <class Work>
+void on_rank0_or_end_job(int rank, long step, Work&& work) {
+  if (rank != 0)
+    return;
+  try {
+    work();
+  } catch (const std::exception& e) {
+    abort_job("checkpoint at step " + std::to_string(step) +
+                  " not written (the previous one is kept): " + e.what(),
+              1);
+  }
+}
+
 }  // namespace
 
 template <int D>
@@ -112,66 +168,34 @@ void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderS
                       const std::string& run_dir, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  const std::string root = run_dir + "/checkpoints";
-  const std::string name = "step_" + std::to_string(solver.steps());
-  const std::string dir = root + "/" + name;
-  if (rank == 0) {
+  const long step = solver.steps();
+  const std::string name = CheckpointFolder::step_name(step);
+  const std::string dir = CheckpointFolder::root(run_dir) + "/" + name;
+  std::unique_ptr<io::CheckpointFile> file;
+  on_rank0_or_end_job(rank, step, [&] {
     fs::remove_all(dir);
     for (std::size_t m = 0; m < solver.materials().size(); ++m)
       fs::create_directories(dir + "/" + material_name(c, m));
-  }
+    file = std::make_unique<io::CheckpointFile>(dir + "/" + CheckpointFolder::kState,
+                                                io::CheckpointFile::Mode::create);
+  });
   MPI_Barrier(comm);
-  std::unique_ptr<io::CheckpointFile> file;
-  if (rank == 0)
-    file = std::make_unique<io::CheckpointFile>(dir + "/mpm.h5", io::CheckpointFile::Mode::create);
   for (std::size_t m = 0; m < solver.materials().size(); ++m) {
     MaterialWriter out(file.get(), material_name(c, m) + "_", dir + "/" + material_name(c, m));
     solver.materials()[m]->write_checkpoint(out, material_stresses(solver.particles(), m).size());
   }
-  if (file) {
-    const Particles<D>& p = solver.particles();
-    file->write("position", flatten(p.position));
-    file->write("reference", flatten(p.reference));
-    file->write("velocity", flatten(p.velocity));
-    file->write("deformation", flatten(p.deformation));
-    file->write("stress", flatten(p.stress));
-    file->write("volume", p.volume);
-    std::vector<double> footings;
-    for (const auto& f : solver.footings()) {
-      footings.push_back(f.settlement());
-      footings.push_back(f.load());
-      footings.insert(footings.end(), f.reaction().data(), f.reaction().data() + D);
-    }
-    file->write("footings", footings);
-    file->set("time", solver.time());
-    file->set("steps", static_cast<double>(solver.steps()));
-    file->set("history_rows", static_cast<double>(recorder.history_rows));
-    file->set("peak_q", recorder.peak_q);
-    file->close();
-  }
+  on_rank0_or_end_job(rank, step, [&] { write_state(c, solver, recorder, *file, dir); });
   MPI_Barrier(comm);
-  if (rank == 0) {
-    std::string previous;
-    if (fs::exists(root + "/latest"))
-      previous = read_latest(run_dir);
-    {
-      std::ofstream out(root + "/latest.tmp");
-      out << name << '\n';
-      if (!out.flush())
-        throw std::runtime_error("cannot write '" + root + "/latest.tmp'");
-    }
-    fs::rename(root + "/latest.tmp", root + "/latest");
-    if (!previous.empty() && previous != name)
-      fs::remove_all(root + "/" + previous);
-  }
+  on_rank0_or_end_job(rank, step, [&] { commit(run_dir, name); });
   MPI_Barrier(comm);
 }
 
 template <int D>
 RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::string& run_dir,
                               MPI_Comm comm) {
-  const std::string dir = run_dir + "/checkpoints/" + read_latest(run_dir);
-  const io::CheckpointFile file(dir + "/mpm.h5", io::CheckpointFile::Mode::read);
+  const std::string dir = CheckpointFolder::latest(run_dir);
+  const io::CheckpointFile file(dir + "/" + CheckpointFolder::kState,
+                                io::CheckpointFile::Mode::read);
   Particles<D>& p = solver.mutable_particles();
   unflatten(file.read("position"), p.position, "position");
   unflatten(file.read("reference"), p.reference, "reference");

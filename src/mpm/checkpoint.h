@@ -15,17 +15,20 @@ struct RecorderState {
   double peak_q = 0.0;
 };
 
-//! Checkpoints of a run in `run_dir/checkpoints/`:
+//! Checkpoints of a run in `run_dir/checkpoints/` (names: CheckpointFolder):
 //!
 //!     step_<n>/mpm.h5          particle arrays (exact doubles), clock, footings, recorder
 //!                              state, and what each material saves (Material::write_checkpoint)
 //!                              as datasets and attributes named m<id>_...
 //!     step_<n>/m<id>/          files of material <id> (a dem_rve: point_<i>.restart, every
 //!                              RVE's engine restart with its contact history)
+//!     step_<n>/case.json       the case it was written for (a resume compares)
+//!     step_<n>/MANIFEST.sha256 checksums of every file above (`sha256sum -c` reads it)
 //!     latest                   text: the name of the last complete step folder
 //!
-//! `latest` is replaced atomically (rename) after all ranks finished writing; the previous
-//! step folder is removed only then, so a kill at any moment leaves one complete checkpoint.
+//! `latest` is replaced atomically (rename) after all ranks finished writing and the manifest
+//! is written; the previous step folder is removed only then, so a kill at any moment leaves
+//! one complete checkpoint. A failure on any rank ends the job (exit 1) and keeps the previous.
 template <int D>
 void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderState& recorder,
                       const std::string& run_dir, MPI_Comm comm);

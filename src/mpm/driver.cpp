@@ -5,10 +5,12 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
 #include "mpm/checkpoint.h"
+#include "mpm/checkpoint_folder.h"
 #include "mpm/recorder.h"
 #include "mpm/rve_snapshots.h"
 
@@ -21,17 +23,29 @@ extern "C" void request_stop(int /*signal*/) {
   g_stop_requested = 1;
 }
 
-//! SIGTERM (end of a batch job's wall time) and SIGINT only set a flag: the run stops
-//! between two steps, when all ranks agree, and writes a checkpoint first.
+//! SIGTERM (end of a batch job's wall time), SIGINT and SIGHUP (the terminal of an
+//! interactive run closed) only set a flag: the run stops between two steps, when all ranks
+//! agree, and writes a checkpoint first.
 void install_stop_handlers() {
   std::signal(SIGTERM, request_stop);
   std::signal(SIGINT, request_stop);
+  std::signal(SIGHUP, request_stop);
 }
 
 bool stop_requested(MPI_Comm comm) {
   int local = g_stop_requested ? 1 : 0, any = 0;
   MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
   return any != 0;
+}
+
+//! A new run in a folder that holds an earlier run's checkpoint: that checkpoint goes, so that
+//! a later --resume cannot continue it with this run's files.
+void start_fresh_checkpoints(const std::string& run_dir, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0)
+    std::filesystem::remove_all(CheckpointFolder::root(run_dir));
+  MPI_Barrier(comm);
 }
 
 long kill_step() {
@@ -62,8 +76,10 @@ bool run_case(MpmCase& c, const RunOptions& options,
               const std::function<void(const Solver<D>&)>& observer) {
   const auto start = std::chrono::steady_clock::now();
   Solver<D> solver(c);
-  const bool checkpoints = !options.run_dir.empty();
+  const bool checkpoints = options.checkpoints && !options.run_dir.empty();
   RecorderState resumed;
+  if (checkpoints && !options.resume)
+    start_fresh_checkpoints(options.run_dir, options.comm);
   if (options.resume) {
     resumed = read_checkpoint<D>(c, solver, options.run_dir, options.comm);
   } else if (c.gravity_stage_steps > 0) {
@@ -80,12 +96,12 @@ bool run_case(MpmCase& c, const RunOptions& options,
   }
   const long total = main_stage_steps(c, solver.dt());
   std::unique_ptr<Recorder<D>> recorder;
-  if (!options.directory.empty()) {
-    recorder = std::make_unique<Recorder<D>>(c, solver, options.directory, total,
+  if (options.write_results && !options.run_dir.empty()) {
+    recorder = std::make_unique<Recorder<D>>(c, solver, options.run_dir, total,
                                              options.resume ? &resumed : nullptr);
   }
   std::unique_ptr<RveSnapshots<D>> snapshots;
-  if (!options.run_dir.empty() && !c.rve_snapshots.at.empty()) {
+  if (checkpoints && !c.rve_snapshots.at.empty()) {
     snapshots = std::make_unique<RveSnapshots<D>>(c.rve_snapshots, solver, options.run_dir, total);
     if (!options.resume)
       snapshots->after_step(solver);

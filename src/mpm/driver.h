@@ -10,15 +10,19 @@
 
 namespace mpm_lig::mpm {
 
-//! How run_case writes: `directory` empty means no files and no progress (the other ranks).
+//! Where and what run_case writes.
 struct RunOptions {
-  std::string directory;
+  //! The run's one folder: history.csv, results.h5/.xdmf, summary.json, checkpoints/,
+  //! rve_snapshots/. Empty: no files at all.
+  std::string run_dir;
+  //! Whether this rank writes the result files and progress (rank 0 of a run).
+  bool write_results = true;
+  //! Checkpoints (every case.checkpoint_every steps and on SIGTERM/SIGINT/SIGHUP) and RVE
+  //! snapshots, on every rank's behalf: a run from the command line.
+  bool checkpoints = false;
+  bool resume = false;         //!< continue from the last checkpoint in run_dir
   int ranks = 1;               //!< MPI ranks of the run (for the summary)
   double prior_seconds = 0.0;  //!< wall time spent before run_case (material preparation)
-  //! Checkpoints (every case.checkpoint_every steps and on SIGTERM/SIGINT) go to
-  //! `run_dir/checkpoints` on every rank's behalf; empty: no checkpoints, no signal handling.
-  std::string run_dir;
-  bool resume = false;  //!< continue from the last checkpoint in run_dir
   MPI_Comm comm = MPI_COMM_WORLD;
 };
 
@@ -27,9 +31,9 @@ struct RunOptions {
 void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir);
 
 //! Runs a validated, prepared case: the gravity stage (if any), then the main stage until the
-//! end time or step count, with the Recorder's output when `options.directory` is not empty.
+//! end time or step count, with the Recorder's output when `options.write_results`.
 //! `observer` (optional) sees the solver after every main-stage step: tests use it.
-//! Returns false if SIGTERM/SIGINT stopped the run (after writing a checkpoint).
+//! Returns false if SIGTERM/SIGINT/SIGHUP stopped the run (after writing a checkpoint).
 //!
 //! Test-only: with MPM_LIG_KILL_AT_STEP=n in the environment, rank 0 kills itself with SIGKILL
 //! after step n is recorded (the resume-identity test).
@@ -37,12 +41,12 @@ template <int D>
 bool run_case(MpmCase& c, const RunOptions& options,
               const std::function<void(const Solver<D>&)>& observer = {});
 
-//! The same with `directory` only (serial runs, tests).
+//! The same with results in `directory` only, or no files if it is empty (serial runs, tests).
 template <int D>
 bool run_case(MpmCase& c, const std::string& directory,
               const std::function<void(const Solver<D>&)>& observer = {}) {
   RunOptions options;
-  options.directory = directory;
+  options.run_dir = directory;
   options.comm = MPI_COMM_SELF;  // one process's run: no collective over other ranks
   return run_case<D>(c, options, observer);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -22,17 +23,27 @@ std::string footing_prefix(std::size_t k) {
   return k == 0 ? "" : "footing" + std::to_string(k) + "_";
 }
 
-//! Keep the header and the first `rows` data rows of a CSV file.
+//! Keep the header and the first `rows` data rows of a CSV file. The cut copy is written and
+//! checked beside it, then renamed over it: a failure (full disk) leaves the file as it was.
 void truncate_rows(const std::string& filename, long rows) {
   std::ifstream in(filename);
   std::string kept, line;
-  for (long k = 0; k <= rows && std::getline(in, line); ++k)
+  long lines = 0;
+  for (; lines <= rows && std::getline(in, line); ++lines)
     kept += line + '\n';
   in.close();
-  std::ofstream out(filename, std::ios::trunc);
+  if (lines != rows + 1)
+    throw std::runtime_error("'" + filename + "' holds fewer rows than the checkpoint");
+  const std::string cut = filename + ".resume_tmp";
+  std::ofstream out(cut, std::ios::trunc);
   out << kept;
-  if (!out.flush())
-    throw std::runtime_error("cannot rewrite '" + filename + "'");
+  out.close();
+  std::error_code error;
+  if (!out || std::filesystem::file_size(cut, error) != kept.size()) {
+    std::filesystem::remove(cut, error);
+    throw std::runtime_error("cannot write '" + cut + "' ('" + filename + "' is unchanged)");
+  }
+  std::filesystem::rename(cut, filename);
 }
 
 //! DIR/history.csv, cut to the checkpoint's rows for a resumed run.
@@ -41,6 +52,16 @@ std::string history_file(const std::string& directory, const RecorderState* resu
   if (resume)
     truncate_rows(file, resume->history_rows);
   return file;
+}
+
+//! results.h5 of a new run, or continued after the checkpoint (null without field output).
+std::unique_ptr<io::FieldWriter> open_fields(const MpmCase& c, const std::string& directory,
+                                             long step, const RecorderState* resume) {
+  if (!c.write_fields)
+    return nullptr;
+  if (resume)
+    return io::FieldWriter::resume(directory, "results", step);
+  return std::make_unique<io::FieldWriter>(directory, "results");
 }
 
 //! Simple-shear columns from the points of material `shear.material`: the cycle (1, 2, ...)
@@ -131,20 +152,17 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
       total_steps_(total_steps),
       material_ids_(c.material_ids),
       simple_shear_(c.simple_shear),
+      fields_(open_fields(c, directory, solver.steps(), resume)),
       history_(history_file(directory, resume), history_columns(c), resume != nullptr),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {
   if (!resume) {
-    if (c.write_fields)
-      fields_ = std::make_unique<io::FieldWriter>(directory, "results");
     after_step(solver);
     return;
   }
   history_rows_ = resume->history_rows;
   peak_q_ = resume->peak_q;
   last_step_ = solver.steps();
-  if (c.write_fields)
-    fields_ = io::FieldWriter::resume(directory, "results", solver.steps());
 }
 
 template <int D>

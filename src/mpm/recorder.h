@@ -57,8 +57,10 @@ class Recorder {
   long output_every_, history_every_, total_steps_;
   std::vector<int> material_ids_;
   SimpleShearOutput simple_shear_;
-  io::CsvHistory history_;
+  // Fields before history: a resume prepares results.h5 first, so that a failure there (full
+  // disk) leaves history.csv untouched too.
   std::unique_ptr<io::FieldWriter> fields_;
+  io::CsvHistory history_;
   std::chrono::steady_clock::time_point start_, last_;
   long last_step_ = 0;
   double last_particle_steps_ = 0.0;

@@ -5,6 +5,7 @@
 #include "coupling/register.h"
 #include "mpm/case_spec.h"
 #include "mpm/driver.h"
+#include "mpm/resume_check.h"
 
 namespace mpm_lig::mpm {
 namespace {
@@ -21,12 +22,15 @@ class MpmAnalysis final : public Analysis {
   void run(const RunContext& context) override {
     int rank = 0;
     MPI_Comm_rank(context.comm, &rank);
-    // A resumed run continues in its own folder.
-    const std::string dir = context.resume_dir.empty() ? context.output_dir : context.resume_dir;
+    const std::string& dir = context.output_dir;
+    // Before anything is written or prepared: a resume that could lose results is refused.
+    if (context.resume)
+      check_resume(case_, dir, context.comm);
     RunOptions options;
-    options.directory = rank == 0 ? dir : "";
     options.run_dir = dir;
-    options.resume = !context.resume_dir.empty();
+    options.write_results = rank == 0;
+    options.checkpoints = true;
+    options.resume = context.resume;
     options.comm = context.comm;
     MPI_Comm_size(context.comm, &options.ranks);
     const double start = MPI_Wtime();

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dem/restart_check.h"
 #include "rve/engine_input.h"
 #include "rve/kinematics.h"
 #include "rve/packing.h"
@@ -21,7 +22,7 @@ double cell_measure(const Mat3& h, int dimension) {
 }  // namespace
 
 Rve::Rve(const RveSpec& spec, MPI_Comm comm, const std::string& label)
-    : spec_(spec), label_(label) {
+    : spec_(spec), label_(label), comm_(comm) {
   dem::EngineOptions options;
   options.label = label;
   options.log_file = spec.log_file;
@@ -40,6 +41,11 @@ std::unique_ptr<Rve> Rve::generate(const RveSpec& spec, MPI_Comm comm, const std
 
 std::unique_ptr<Rve> Rve::from_restart(const RveSpec& spec, const std::string& restart_file,
                                        MPI_Comm comm, const std::string& label) {
+  // Checked before the engine sees it: LIGGGHTS hangs on an empty file and aborts on a
+  // damaged one without a word.
+  const std::string problem = dem::restart_file_problem(restart_file, spec.engine, spec.grains);
+  if (!problem.empty())
+    throw std::runtime_error(label + ": restart file '" + restart_file + "': " + problem);
   std::unique_ptr<Rve> rve(new Rve(spec, comm, label));
   rve->engine_->commands(restart_input(spec, restart_file));
   rve->engine_->commands(material_input(spec, spec.contact.friction));
@@ -105,14 +111,23 @@ void Rve::set_friction(double friction) {
 void Rve::write_restart(const std::string& file) {
   // A saved packing carries no streaming motion: a clone starts with a resting box.
   set_streaming(Mat3::Zero());
-  engine_->command("write_restart " + file);
+  write_checked_restart(file);
   // A clone re-evaluates the contact forces once when it starts (which advances the tangential
   // history by one step); doing the same here keeps the original bit-identical to its clones.
   engine_->command("run 0");
 }
 
-void Rve::write_checkpoint(const std::string& file) {
+void Rve::write_checked_restart(const std::string& file) {
   engine_->command("write_restart " + file);
+  // The engine's rank 0 writes the file; the others may return before it is closed.
+  MPI_Barrier(comm_);
+  const std::string problem = dem::restart_file_problem(file, spec_.engine, spec_.grains);
+  if (!problem.empty())
+    throw std::runtime_error(label_ + ": the restart file '" + file + "' just written: " + problem);
+}
+
+void Rve::write_checkpoint(const std::string& file) {
+  write_checked_restart(file);
   // As in write_restart: the clone's first `run 0` re-evaluates the contacts (which advances
   // the tangential history); so must the original, else it and the clone part at 1e-16.
   engine_->command("run 0");

@@ -77,9 +77,12 @@ class Rve {
   void reduce_cell_basis();
   void set_streaming(const Mat3& gradient);
   void run_to_box(const Mat3& target, int steps);
+  //! The engine's write_restart, then the file checked whole on every rank (throws if not).
+  void write_checked_restart(const std::string& file);
 
   RveSpec spec_;
   std::string label_;
+  MPI_Comm comm_;
   std::unique_ptr<dem::Engine> engine_;
   Mat3 rotation_ = Mat3::Identity();
   Mat3 streaming_ = Mat3::Zero();  //!< velocity gradient currently in the grain velocities

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "dem/restart_check.h"
+
 namespace mpm_lig::rve {
 namespace {
 
@@ -173,6 +175,11 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   if (s.grains < kMinGrains)
     node.fail("grains",
               "must be >= " + std::to_string(kMinGrains) + ", got " + std::to_string(s.grains));
+  if (!s.restart_file.empty()) {
+    const std::string problem = dem::restart_file_problem(s.restart_file, s.engine, s.grains);
+    if (!problem.empty())
+      node.fail("restart_file", "'" + s.restart_file + "': " + problem);
+  }
   s.radius = parse_radius(node.child("radius"));
   s.density = node.positive("density");
   const long seed = node.get_or<long>("seed", 1);

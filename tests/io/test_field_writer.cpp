@@ -274,5 +274,28 @@ TEST(FieldWriter, MisuseIsReported) {
   EXPECT_THROW(writer.begin_step(1, 0.0, std::vector<Vec3>{}), std::runtime_error);
 }
 
+TEST(FieldWriter, AFailedResumeLeavesTheEarlierFileWhole) {
+  const std::string dir = output_dir("failed_resume");
+  const std::vector<Vec3> pos = {{0, 0, 0}, {1, 0, 0}};
+  {
+    FieldWriter first(dir, "fields");
+    for (long step : {0L, 10L, 20L}) {
+      first.begin_step(step, 1e-3 * step, pos);
+      first.add_scalar("volume", {1.0, 1.0});
+      first.end_step();
+    }
+  }
+  // Where the kept steps are copied to cannot be written (as on a full disk): twice.
+  std::filesystem::create_directories(dir + "/fields.h5.resume_tmp");
+  EXPECT_ANY_THROW(FieldWriter::resume(dir, "fields", 10));
+  EXPECT_ANY_THROW(FieldWriter::resume(dir, "fields", 10));
+  H5Reader h5(dir + "/fields.h5");
+  ASSERT_TRUE(h5.ok());
+  for (const char* step : {"/step_000000/volume", "/step_000010/volume", "/step_000020/volume"})
+    EXPECT_TRUE(h5.exists(step)) << step;
+  std::filesystem::remove_all(dir + "/fields.h5.resume_tmp");
+  EXPECT_EQ(FieldWriter::resume(dir, "fields", 10)->steps_written(), 2u);
+}
+
 }  // namespace
 }  // namespace mpm_lig::io

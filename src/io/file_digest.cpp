@@ -1,0 +1,103 @@
+#include "io/file_digest.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include <openssl/evp.h>
+
+namespace mpm_lig::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+using DigestContext = std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)>;
+
+//! Relative path -> checksum of every regular file under `folder` but `skip`.
+std::map<std::string, std::string> digests(const fs::path& folder, const std::string& skip) {
+  std::map<std::string, std::string> out;
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    if (!entry.is_regular_file())
+      continue;
+    const std::string relative = fs::relative(entry.path(), folder).generic_string();
+    if (relative != skip)
+      out[relative] = sha256_of_file(entry.path().string());
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string sha256_of_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw std::runtime_error("cannot read '" + file + "'");
+  DigestContext context(EVP_MD_CTX_new(), &EVP_MD_CTX_free);
+  if (!context || EVP_DigestInit_ex(context.get(), EVP_sha256(), nullptr) != 1)
+    throw std::runtime_error("SHA-256 is not available");
+  std::vector<char> buffer(1 << 16);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    if (in.gcount() > 0)
+      EVP_DigestUpdate(context.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad())
+    throw std::runtime_error("cannot read '" + file + "'");
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  EVP_DigestFinal_ex(context.get(), digest, &length);
+  static const char* const kHex = "0123456789abcdef";
+  std::string hex;
+  for (unsigned int k = 0; k < length; ++k) {
+    hex += kHex[digest[k] >> 4];
+    hex += kHex[digest[k] & 15];
+  }
+  return hex;
+}
+
+void write_manifest(const std::string& folder, const std::string& manifest_name) {
+  const fs::path target = fs::path(folder) / manifest_name;
+  const fs::path temporary = target.string() + ".tmp";
+  const auto listed = digests(folder, manifest_name);
+  std::ofstream out(temporary);
+  for (const auto& [file, digest] : listed)
+    out << digest << "  " << file << '\n';
+  out.close();
+  if (!out)
+    throw std::runtime_error("cannot write '" + temporary.string() + "'");
+  fs::rename(temporary, target);
+}
+
+std::string manifest_problem(const std::string& folder, const std::string& manifest_name) {
+  std::ifstream in(fs::path(folder) / manifest_name);
+  if (!in)
+    return "it has no " + manifest_name + " (incomplete, or written before checksums)";
+  std::map<std::string, std::string> listed;
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::size_t gap = line.find("  ");
+    if (gap != 64 || line.size() <= gap + 2)
+      return manifest_name + " is damaged";
+    listed[line.substr(gap + 2)] = line.substr(0, gap);
+  }
+  const auto present = digests(folder, manifest_name);
+  for (const auto& [file, digest] : listed) {
+    const auto found = present.find(file);
+    if (found == present.end())
+      return "'" + file + "' is missing";
+    if (found->second != digest)
+      return "'" + file + "' has changed since it was written (checksum mismatch)";
+  }
+  for (const auto& [file, digest] : present) {
+    if (listed.count(file) == 0)
+      return "'" + file + "' was added after it was written";
+  }
+  return "";
+}
+
+}  // namespace mpm_lig::io

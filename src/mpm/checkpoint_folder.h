@@ -1,0 +1,33 @@
+#pragma once
+
+#include <string>
+
+namespace mpm_lig::mpm {
+
+//! Names inside a run folder's `checkpoints/`:
+//!
+//!     checkpoints/latest               text: the name of the last complete step folder
+//!     checkpoints/step_<n>/            one checkpoint (after MPM step n)
+//!         mpm.h5, m<id>/..., case.json (the case it was written for), MANIFEST.sha256
+//!
+//! `latest` is the only name read from disk. It must be a plain `step_<n>`: a run never reads,
+//! writes or deletes outside its folder because of a name it found inside it.
+struct CheckpointFolder {
+  static constexpr const char* kManifest = "MANIFEST.sha256";
+  static constexpr const char* kCase = "case.json";
+  static constexpr const char* kState = "mpm.h5";
+
+  //! `run_dir/checkpoints`.
+  static std::string root(const std::string& run_dir);
+  //! "step_<n>".
+  static std::string step_name(long step);
+  //! Whether `name` is "step_" followed by digits only.
+  static bool is_step_name(const std::string& name);
+  //! The folder `latest` names (`run_dir/checkpoints/step_<n>`); throws ResumeError when there
+  //! is no `latest`, it holds anything but a plain step name, or that folder is missing.
+  static std::string latest(const std::string& run_dir);
+  //! The step name in `latest`, or "" when there is none or it is not a plain step name.
+  static std::string latest_name_or_empty(const std::string& run_dir);
+};
+
+}  // namespace mpm_lig::mpm

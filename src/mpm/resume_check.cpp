@@ -1,0 +1,121 @@
+#include "mpm/resume_check.h"
+
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "core/case_error.h"
+#include "io/checkpoint_file.h"
+#include "io/field_index.h"
+#include "io/file_digest.h"
+#include "mpm/case_fingerprint.h"
+#include "mpm/checkpoint_folder.h"
+
+namespace mpm_lig::mpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+//! Lines of `file` (header included), counting at most `enough`.
+long count_lines(const std::string& file, long enough) {
+  std::ifstream in(file);
+  std::string line;
+  long lines = 0;
+  while (lines < enough && std::getline(in, line))
+    ++lines;
+  return lines;
+}
+
+std::string joined(const std::vector<std::string>& keys) {
+  constexpr std::size_t kShown = 12;
+  std::string out;
+  for (std::size_t k = 0; k < keys.size() && k < kShown; ++k)
+    out += (k == 0 ? "" : ", ") + keys[k];
+  if (keys.size() > kShown)
+    out += " and " + std::to_string(keys.size() - kShown) + " more";
+  return out;
+}
+
+void check_case(const MpmCase& c, const std::string& folder) {
+  const std::string file = folder + "/" + CheckpointFolder::kCase;
+  std::ifstream in(file);
+  const nlohmann::json saved = nlohmann::json::parse(in, nullptr, false);
+  if (saved.is_discarded())
+    throw ResumeError("'" + file + "' cannot be read");
+  const std::vector<std::string> changed = changed_case_keys(saved, c.document);
+  if (!changed.empty())
+    throw ResumeError(
+        "the case has changed since checkpoint '" + folder + "' was written: " + joined(changed) +
+        " (only the end, output intervals and the title may change on resume; run the changed "
+        "case from the start with another --output)");
+}
+
+void check_state(const MpmCase& c, const std::string& folder) {
+  const io::CheckpointFile state(folder + "/" + CheckpointFolder::kState,
+                                 io::CheckpointFile::Mode::read);
+  const std::string bad = state.first_non_finite();
+  if (!bad.empty())
+    throw ResumeError("checkpoint '" + folder + "' holds a value that is not finite in '" + bad +
+                      "' (the run had failed before it was written)");
+  const long step = static_cast<long>(state.get("steps"));
+  if (c.end_steps > 0 && c.end_steps < step)
+    throw ResumeError("analysis.end.steps = " + std::to_string(c.end_steps) +
+                      " lies before the checkpoint's step " + std::to_string(step));
+  if (c.end_time > 0.0 && c.end_time < state.get("time"))
+    throw ResumeError("analysis.end.time lies before the checkpoint's time");
+}
+
+void check_results(const MpmCase& c, const std::string& run_dir, const std::string& folder) {
+  const io::CheckpointFile state(folder + "/" + CheckpointFolder::kState,
+                                 io::CheckpointFile::Mode::read);
+  const long rows = static_cast<long>(state.get("history_rows"));
+  const std::string history = run_dir + "/history.csv";
+  if (!fs::is_regular_file(history))
+    throw ResumeError("'" + history + "' is missing: the resumed run would lose its first " +
+                      std::to_string(rows) + " rows");
+  const long lines = count_lines(history, rows + 1);
+  if (lines < rows + 1)
+    throw ResumeError("'" + history + "' holds " + std::to_string(lines > 0 ? lines - 1 : 0) +
+                      " rows, the checkpoint needs " + std::to_string(rows) +
+                      " (cut or replaced after the checkpoint)");
+  const std::string fields = run_dir + "/results.h5";
+  if (!c.write_fields || !fs::exists(fields))
+    return;
+  try {
+    io::read_field_steps(fields);
+  } catch (const std::exception& e) {
+    throw ResumeError("'" + fields + "' cannot be read (" + e.what() +
+                      "); it is left as it is: move it elsewhere to resume without its fields");
+  }
+}
+
+std::string resume_problem(const MpmCase& c, const std::string& run_dir) {
+  try {
+    const std::string folder = CheckpointFolder::latest(run_dir);
+    const std::string damage = io::manifest_problem(folder, CheckpointFolder::kManifest);
+    if (!damage.empty())
+      return "checkpoint '" + folder + "' is damaged: " + damage;
+    check_case(c, folder);
+    check_state(c, folder);
+    check_results(c, run_dir, folder);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+void check_resume(const MpmCase& c, const std::string& run_dir, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string problem = rank == 0 ? resume_problem(c, run_dir) : "";
+  int length = static_cast<int>(problem.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  problem.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm);
+  if (!problem.empty())
+    throw ResumeError(problem);
+}
+
+}  // namespace mpm_lig::mpm
