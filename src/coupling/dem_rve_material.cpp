@@ -290,8 +290,8 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     if (!layout_->owns(p))
       continue;
     rves_.push_back(or_end_job(in.describe() + ": " + point_label(p) + " not restored", [&] {
-      return rve::Rve::from_restart(spec_, checkpoint_file(in.folder(), p), layout_->group_comm(),
-                                    point_label(p));
+      return rve::Rve::from_checkpoint(spec_, checkpoint_file(in.folder(), p),
+                                       layout_->group_comm(), point_label(p));
     }));
     rves_.back()->restore(saved.rve);
   }

@@ -36,11 +36,12 @@ std::unique_ptr<Rve> Rve::generate(const RveSpec& spec, MPI_Comm comm, const std
   rve->engine_->commands(material_input(spec, spec.contact.friction));
   rve->engine_->commands(dynamics_input(spec));
   rve->engine_->command("run 0");
+  rve->settled_ = true;
   return rve;
 }
 
-std::unique_ptr<Rve> Rve::from_restart(const RveSpec& spec, const std::string& restart_file,
-                                       MPI_Comm comm, const std::string& label) {
+std::unique_ptr<Rve> Rve::read(const RveSpec& spec, const std::string& restart_file, MPI_Comm comm,
+                               const std::string& label) {
   // Checked before the engine sees it: LIGGGHTS hangs on an empty file and aborts on a
   // damaged one without a word.
   const std::string problem = dem::restart_file_problem(restart_file, spec.engine, spec.grains);
@@ -50,14 +51,28 @@ std::unique_ptr<Rve> Rve::from_restart(const RveSpec& spec, const std::string& r
   rve->engine_->commands(restart_input(spec, restart_file));
   rve->engine_->commands(material_input(spec, spec.contact.friction));
   rve->engine_->commands(dynamics_input(spec));
-  rve->engine_->command("run 0");
   const long count = rve->engine_->atom_count();
   if (count != spec.grains) {
     throw std::runtime_error(label + ": restart file '" + restart_file + "' holds " +
                              std::to_string(count) + " grains, " + spec.path + ".grains says " +
                              std::to_string(spec.grains));
   }
+  rve->settled_ = true;
   return rve;
+}
+
+std::unique_ptr<Rve> Rve::from_restart(const RveSpec& spec, const std::string& restart_file,
+                                       MPI_Comm comm, const std::string& label) {
+  std::unique_ptr<Rve> rve = read(spec, restart_file, comm, label);
+  rve->engine_->command("run 0");
+  return rve;
+}
+
+std::unique_ptr<Rve> Rve::from_checkpoint(const RveSpec& spec, const std::string& file,
+                                          MPI_Comm comm, const std::string& label) {
+  // No `run 0`: the file holds the state after the original's write_restart, which did the
+  // set-up the original's next deform skips (measured: the clone then continues bit for bit).
+  return read(spec, file, comm, label);
 }
 
 Mat3 Rve::box_matrix() const {
@@ -115,6 +130,7 @@ void Rve::write_restart(const std::string& file) {
   // A clone re-evaluates the contact forces once when it starts (which advances the tangential
   // history by one step); doing the same here keeps the original bit-identical to its clones.
   engine_->command("run 0");
+  settled_ = true;
 }
 
 void Rve::write_checked_restart(const std::string& file) {
@@ -128,9 +144,7 @@ void Rve::write_checked_restart(const std::string& file) {
 
 void Rve::write_checkpoint(const std::string& file) {
   write_checked_restart(file);
-  // As in write_restart: the clone's first `run 0` re-evaluates the contacts (which advances
-  // the tangential history); so must the original, else it and the clone part at 1e-16.
-  engine_->command("run 0");
+  settled_ = true;  // the write did the set-up the next deform would run
 }
 
 void Rve::restore(const State& s) {
@@ -224,6 +238,9 @@ int Rve::deform(const Mat3& dF, int substeps) {
     if (out_of_plane > 1e-12 || std::abs(dF(2, 2) - 1.0) > 1e-12)
       throw std::invalid_argument(label_ + ": a 2D RVE takes in-plane deformation increments only");
   }
+  if (!settled_)
+    engine_->command("run 0");
+  settled_ = false;
   reduce_cell_basis();
   const Mat3 h = box_matrix();
   const BoxStep step = box_step(rotation_.transpose() * dF * rotation_, h);

@@ -26,6 +26,10 @@ class Rve {
   //! A clone of a saved packing (engine restart file written by write_restart()).
   static std::unique_ptr<Rve> from_restart(const RveSpec& spec, const std::string& restart_file,
                                            MPI_Comm comm, const std::string& label);
+  //! A running RVE again from its checkpoint (write_checkpoint()); take its state() with
+  //! restore(). It continues bit-identically to the original had it not been checkpointed.
+  static std::unique_ptr<Rve> from_checkpoint(const RveSpec& spec, const std::string& file,
+                                              MPI_Comm comm, const std::string& label);
 
   const RveSpec& spec() const { return spec_; }
   const std::string& label() const { return label_; }
@@ -57,7 +61,8 @@ class Rve {
     double last_mean_stress = 0.0;
   };
   //! Checkpoint of a running RVE: the engine restart (contact history and streaming velocities
-  //! kept) in `file`; with state() it continues bit-identically after from_restart + restore().
+  //! kept) in `file`; with state() it continues bit-identically after from_checkpoint +
+  //! restore(), and writing it does not change how this RVE continues (see `settled_`).
   void write_checkpoint(const std::string& file);
   State state() const { return {rotation_, streaming_, particle_steps_, last_mean_stress_}; }
   //! Take the state a checkpoint saved (after from_restart of its restart file).
@@ -73,6 +78,9 @@ class Rve {
 
  private:
   Rve(const RveSpec& spec, MPI_Comm comm, const std::string& label);
+  //! An RVE whose engine read `restart_file` (checked first), with the material set up.
+  static std::unique_ptr<Rve> read(const RveSpec& spec, const std::string& restart_file,
+                                   MPI_Comm comm, const std::string& label);
   int substeps_for(const Mat3& effective_increment);
   void reduce_cell_basis();
   void set_streaming(const Mat3& gradient);
@@ -88,6 +96,13 @@ class Rve {
   Mat3 streaming_ = Mat3::Zero();  //!< velocity gradient currently in the grain velocities
   double particle_steps_ = 0.0;
   double last_mean_stress_ = 0.0;
+  //! Whether the engine's set-up (`run 0`: init, re-neighbouring, force evaluation) has run
+  //! since the last deform. Each set-up changes the arithmetic at round-off, and an engine's
+  //! write_restart does exactly what a `run 0` does (measured bit for bit, LIGGGHTS 3.8). So
+  //! every deform starts with a set-up unless a restart was just written or read: a
+  //! checkpoint takes the place of a set-up that happens anyway, and runs with and without
+  //! checkpoints (or stopped and resumed) do the same arithmetic.
+  bool settled_ = false;
 };
 
 }  // namespace mpm_lig::rve

@@ -43,7 +43,7 @@ for damage in empty noise; do
   target=$(find "$step" -name point_1.restart)
   cp "$work/$damage.restart" "$target"
   (cd "$step" && find . -type f ! -name MANIFEST.sha256 -printf '%P\n' | sort | xargs sha256sum > MANIFEST.sha256)
-  timeout 120 "$@" "$exe" "$work/case.json" --resume "$work/run" > "$work/out.log" 2> "$work/err.log"
+  timeout "${RESUME_TIMEOUT:-120}" "$@" "$exe" "$work/case.json" --resume "$work/run" > "$work/out.log" 2> "$work/err.log"
   status=$?
   [ $status -ne 0 ] && [ $status -ne 124 ] || fail "exit $status (124: hang)"
   grep -Eq "point 1 .*point_1\.restart': (empty|not a LIGGGHTS)" "$work/err.log" ||
