@@ -5,16 +5,13 @@
 # system without srun sends it: the launcher must forward it to every rank. Open MPI's mpirun
 # then exits 1 although every rank exits 0 (measured, Open MPI 4.1): its exit code is not
 # checked, the stop message and the checkpoint are.
-# SIGNAL=HUP (default TERM) sends another stop signal. Open MPI's mpirun sends SIGKILL 1 s after
-# forwarding the signal (odls_base_sigkill_timeout): under load a checkpoint can take longer, so
-# the test gives the ranks the time a batch system would (60 s) instead of depending on timing.
+# SIGNAL=HUP (default TERM) sends another stop signal.
 # With IDENTITY=1 the resumed run is compared with an uninterrupted run that writes no
 # checkpoint: writing one must not change the arithmetic (chaotic DEM: any round-off difference
 # grows to percents over the 1000 steps), so they must be bit-identical.
 # usage: [SIGNAL=HUP] [IDENTITY=1] sigterm_checkpoint.sh MPM_LIG CASE.json WORK_DIR [LAUNCHER ...]
 set -e
 signal=${SIGNAL:-TERM}
-export OMPI_MCA_odls_base_sigkill_timeout=60
 exe=$1 case=$2 work=$3
 shift 3
 rm -rf "$work" && mkdir -p "$work"
