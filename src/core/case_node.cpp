@@ -1,24 +1,32 @@
 #include "core/case_node.h"
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
+
+#include "core/case_text.h"
+#include "core/printable.h"
 
 namespace mpm_lig {
 namespace {
 
-std::string join_path(const std::string& parent, const std::string& key) {
-  return parent.empty() ? key : parent + "." + key;
-}
-
-std::string index_path(const std::string& parent, std::size_t i) {
-  return parent + "[" + std::to_string(i) + "]";
-}
-
+//! A short description of a value for a message: small values as JSON, large ones by their
+//! kind and size (a message never grows with the input).
 std::string describe(const nlohmann::json& j) {
-  std::string text = j.dump();
+  if (j.is_object())
+    return "an object with " + std::to_string(j.size()) + " keys";
+  if (j.is_array()) {
+    const bool flat = j.size() <= 6 && std::none_of(j.begin(), j.end(), [](const auto& v) {
+                        return v.is_structured();
+                      });
+    if (!flat)
+      return "an array of " + std::to_string(j.size()) + " values";
+  }
+  if (j.is_string() && j.get_ref<const std::string&>().size() > 60)
+    return "\"" + printable(j.get_ref<const std::string&>(), 50) + "\"";
+  std::string text = printable(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   if (text.size() > 60)
     text = text.substr(0, 57) + "...";
   return text;
@@ -92,7 +100,7 @@ std::vector<T> read_vector(const nlohmann::json& j, const std::string& path) {
   std::vector<T> out;
   out.reserve(j.size());
   for (std::size_t i = 0; i < j.size(); ++i)
-    out.push_back(read_scalar<T>(j[i], index_path(path, i)));
+    out.push_back(read_scalar<T>(j[i], json_path_index(path, i)));
   return out;
 }
 
@@ -112,7 +120,7 @@ std::array<T, N> read_array(const nlohmann::json& j, const std::string& path) {
 }  // namespace
 
 std::string CaseNode::path_of(const std::string& key) const {
-  return join_path(path_, key);
+  return json_path_key(path_, key);
 }
 
 bool CaseNode::has(const std::string& key) const {
@@ -227,7 +235,7 @@ std::vector<CaseNode> CaseNode::children(const std::string& key) const {
     fail(key, "expected an array, got " + describe(j));
   std::vector<CaseNode> out;
   for (std::size_t i = 0; i < j.size(); ++i) {
-    out.push_back(CaseNode(&j[i], index_path(path_of(key), i), usage_));
+    out.push_back(CaseNode(&j[i], json_path_index(path_of(key), i), usage_));
   }
   return out;
 }
@@ -244,11 +252,13 @@ CaseDocument::CaseDocument(nlohmann::json json)
       usage_(std::make_shared<CaseNode::Usage>()) {}
 
 CaseDocument CaseDocument::parse(const std::string& text) {
+  check_case_text(text);
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text, nullptr, true, /*ignore_comments=*/false);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw CaseError("(file)", std::string("not valid JSON: ") + e.what());
+  } catch (const nlohmann::json::exception& e) {
+    // check_case_text() has seen every error the parser can find; this is a last guard.
+    throw CaseError("(file)", std::string("not valid JSON: ") + printable(e.what(), 300));
   }
   if (!j.is_object())
     throw CaseError("(root)", "a case file must be a JSON object");
@@ -256,12 +266,7 @@ CaseDocument CaseDocument::parse(const std::string& text) {
 }
 
 CaseDocument CaseDocument::load(const std::string& filename) {
-  std::ifstream in(filename);
-  if (!in)
-    throw CaseError("(file)", "cannot open case file '" + filename + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  CaseDocument document = parse(text.str());
+  CaseDocument document = parse(read_case_text(filename));
   document.usage_->base_dir = std::filesystem::path(filename).parent_path().string();
   return document;
 }
@@ -278,14 +283,14 @@ void find_unused(const nlohmann::json& j, const std::string& path,
       // Keys starting with '_' are comments ("_note": "..."), ignored by design.
       if (!it.key().empty() && it.key()[0] == '_')
         continue;
-      const std::string p = join_path(path, it.key());
+      const std::string p = json_path_key(path, it.key());
       if (!used.count(p))
         throw CaseError(p, "unknown key (misspelt, or not used by this case)");
       find_unused(it.value(), p, used);
     }
   } else if (j.is_array()) {
     for (std::size_t i = 0; i < j.size(); ++i)
-      find_unused(j[i], index_path(path, i), used);
+      find_unused(j[i], json_path_index(path, i), used);
   }
 }
 }  // namespace
