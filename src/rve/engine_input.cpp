@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "dem/file_name.h"
 #include "rve/script.h"
 
 namespace mpm_lig::rve {
@@ -69,8 +70,9 @@ std::string setup_input(const RveSpec& spec, const Packing& packing) {
 }
 
 std::string restart_input(const RveSpec& spec, const std::string& restart_file) {
-  return render(spec, "restart.in",
-                {{"restart_file", restart_file}, {"skin", fmt(neighbour_skin(spec))}});
+  return render(
+      spec, "restart.in",
+      {{"restart_file", dem::quoted_file_name(restart_file)}, {"skin", fmt(neighbour_skin(spec))}});
 }
 
 std::string material_input(const RveSpec& spec, double friction) {

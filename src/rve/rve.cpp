@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dem/file_name.h"
 #include "dem/restart_check.h"
 #include "rve/engine_input.h"
 #include "rve/kinematics.h"
@@ -134,7 +135,7 @@ void Rve::write_restart(const std::string& file) {
 }
 
 void Rve::write_checked_restart(const std::string& file) {
-  engine_->command("write_restart " + file);
+  engine_->command("write_restart " + dem::quoted_file_name(file));
   // The engine's rank 0 writes the file; the others may return before it is closed.
   MPI_Barrier(comm_);
   const std::string problem = dem::restart_file_problem(file, spec_.engine, spec_.grains);
