@@ -3,17 +3,22 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "io/checked_stream.h"
+
 namespace mpm_lig::io {
 
 CsvHistory::CsvHistory(const std::string& filename, std::vector<std::string> columns, bool append)
-    : columns_(std::move(columns)), out_(filename, append ? std::ios::app : std::ios::trunc) {
+    : columns_(std::move(columns)),
+      filename_(filename),
+      out_(filename, append ? std::ios::app : std::ios::trunc) {
   if (!out_)
     throw std::runtime_error("cannot write '" + filename + "'");
   if (append)
     return;
   for (std::size_t i = 0; i < columns_.size(); ++i)
     out_ << (i ? "," : "") << columns_[i];
-  out_ << '\n' << std::flush;
+  out_ << '\n';
+  flush_checked(out_, filename_);
 }
 
 void CsvHistory::write(const std::vector<double>& values) {
@@ -27,7 +32,8 @@ void CsvHistory::write(const std::vector<double>& values) {
     std::snprintf(buffer, sizeof buffer, "%.17g", values[i]);
     out_ << (i ? "," : "") << buffer;
   }
-  out_ << '\n' << std::flush;
+  out_ << '\n';
+  flush_checked(out_, filename_);
 }
 
 }  // namespace mpm_lig::io

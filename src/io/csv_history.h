@@ -13,11 +13,13 @@ class CsvHistory {
   CsvHistory(const std::string& filename, std::vector<std::string> columns, bool append = false);
 
   const std::vector<std::string>& columns() const { return columns_; }
-  //! Write one row; throws std::invalid_argument if the count does not match the header.
+  //! Write one row; throws std::invalid_argument if the count does not match the header and
+  //! std::runtime_error if the row did not reach the file.
   void write(const std::vector<double>& values);
 
  private:
   std::vector<std::string> columns_;
+  std::string filename_;
   std::ofstream out_;
 };
 

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "io/checked_stream.h"
+
 namespace mpm_lig::io {
 
 void write_json(const std::string& filename, const nlohmann::json& summary) {
@@ -13,6 +15,7 @@ void write_json(const std::string& filename, const nlohmann::json& summary) {
     if (!out)
       throw std::runtime_error("cannot write '" + partial + "'");
     out << summary.dump(2) << '\n';
+    close_checked(out, partial);
   }
   if (std::rename(partial.c_str(), filename.c_str()) != 0) {
     throw std::runtime_error("cannot rename '" + partial + "' to '" + filename + "'");

@@ -4,6 +4,8 @@
 #include <iomanip>
 #include <stdexcept>
 
+#include "io/checked_stream.h"
+
 namespace mpm_lig::io {
 namespace {
 
@@ -39,6 +41,7 @@ void write_vtk_grains(const std::string& filename, const std::vector<Vec3>& cent
   out << "VECTORS velocity double\n";
   for (const auto& v : velocities)
     write_point(out, v);
+  close_checked(out, filename);
 }
 
 void write_vtk_lines(const std::string& filename, const std::vector<Vec3>& starts,
@@ -56,6 +59,7 @@ void write_vtk_lines(const std::string& filename, const std::vector<Vec3>& start
   out << "CELL_DATA " << n << "\nSCALARS " << scalar_name << " double 1\nLOOKUP_TABLE default\n";
   for (double s : scalars)
     out << s << '\n';
+  close_checked(out, filename);
 }
 
 }  // namespace mpm_lig::io

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/checked_stream.h"
+
 namespace mpm_lig::io {
 namespace {
 
@@ -131,9 +133,7 @@ void replace_file(const std::string& filename, const std::string& text) {
   {
     std::ofstream out(temporary, std::ios::trunc);
     out << text;
-    out.flush();
-    if (!out)
-      throw std::runtime_error("cannot write '" + temporary + "'");
+    close_checked(out, temporary);
   }
   std::error_code error;
   std::filesystem::rename(temporary, filename, error);
