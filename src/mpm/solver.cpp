@@ -338,8 +338,18 @@ template <int D>
 void Solver<D>::update_stress() {
   for (std::size_t m = 0; m < materials_.size(); ++m) {
     const auto& points = batch_particles_[m];
-    for (std::size_t k = 0; k < points.size(); ++k)
+    for (std::size_t k = 0; k < points.size(); ++k) {
       batch_increments_[m][k] = increments_[points[k]];
+      // A material (a DEM engine above all) must never be handed NaN or infinity: it would
+      // fail later, and be blamed, for a problem of the MPM's.
+      if (!batch_increments_[m][k].allFinite())
+        throw std::runtime_error(
+            "step " + std::to_string(steps_ + 1) + ": the deformation increment of material " +
+            "point " + std::to_string(points[k]) + " at " +
+            describe_position(particles_.position[points[k]]) + " (materials[" + std::to_string(m) +
+            "]) is not finite; the MPM state has overflowed (time step too " +
+            "large for the loading, or a prescribed value out of range?)");
+    }
     materials_[m]->update(batch_points_[m], batch_increments_[m], dt_, batch_stress_[m]);
     for (std::size_t k = 0; k < points.size(); ++k)
       particles_.stress[points[k]] = batch_stress_[m][k];
