@@ -13,6 +13,7 @@
 #include "core/case_error.h"
 #include "core/case_node.h"
 #include "core/mpi_session.h"
+#include "core/printable.h"
 #include "element/register.h"
 #include "mpm/register.h"
 
@@ -139,32 +140,41 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  // Everything the run would refuse is found here, before any file exists.
+  const std::string case_name = mpm_lig::printable(cl->case_file, 300);
+  auto refuse = [&](const std::string& message, int code) {
+    if (root_rank)
+      std::fprintf(stderr, "mpm_lig: %s\n", mpm_lig::printable(message).c_str());
+    return code;
+  };
   std::unique_ptr<mpm_lig::Analysis> analysis;
   try {
     analysis = load_analysis(cl->case_file);
   } catch (const mpm_lig::CaseError& e) {
-    if (root_rank)
-      std::fprintf(stderr, "mpm_lig: %s: %s\n", cl->case_file.c_str(), e.what());
-    return mpm_lig::kExitBadCase;
+    return refuse(case_name + ": " + e.what(), mpm_lig::kExitBadCase);
+  } catch (const std::exception& e) {
+    return refuse(case_name + ": internal error while checking the case: " + e.what(), 1);
   }
-  if (cl->resume_dir && !analysis->supports_resume()) {
-    if (root_rank)
-      std::fprintf(stderr, "mpm_lig: --resume: this analysis type writes no checkpoints\n");
-    return mpm_lig::kExitBadCase;
-  }
+  if (cl->resume_dir && !analysis->supports_resume())
+    return refuse("--resume: this analysis type writes no checkpoints", mpm_lig::kExitBadCase);
   mpm_lig::RunContext context;
   context.case_file = cl->case_file;
   std::string refusal;
   context.output_dir = run_directory(*cl, refusal);
   context.resume = cl->resume_dir.has_value();
-  if (!refusal.empty()) {
-    if (root_rank)
-      std::fprintf(stderr, "mpm_lig: %s\n", refusal.c_str());
-    return mpm_lig::kExitBadCase;
+  if (!refusal.empty())
+    return refuse(refusal, mpm_lig::kExitBadCase);
+  try {
+    analysis->check_run(context);
+  } catch (const mpm_lig::CaseError& e) {
+    return refuse(case_name + ": " + e.what(), mpm_lig::kExitBadCase);
   }
   if (cl->validate_only) {
-    if (root_rank)
-      std::printf("%s: valid\n", cl->case_file.c_str());
+    if (root_rank) {
+      std::printf("%s: valid\n", case_name.c_str());
+      for (const std::string& line : analysis->unchecked())
+        std::printf("  checked only when the run gets there: %s\n", line.c_str());
+    }
     return 0;
   }
 
@@ -176,13 +186,15 @@ int main(int argc, char** argv) {
   } catch (const mpm_lig::ResumeError& e) {
     // Refused on every rank alike, before any file was touched.
     if (root_rank)
-      std::fprintf(stderr, "mpm_lig: --resume %s: %s\n", context.output_dir.c_str(), e.what());
+      std::fprintf(stderr, "mpm_lig: --resume %s: %s\n",
+                   mpm_lig::printable(context.output_dir, 300).c_str(),
+                   mpm_lig::printable(e.what()).c_str());
     return mpm_lig::kExitBadCase;
   } catch (const mpm_lig::CaseError& e) {
     // Some problems can only be seen at run time (a restart file that is not there).
-    mpm_lig::abort_job(cl->case_file + ": " + e.what(), mpm_lig::kExitBadCase);
+    mpm_lig::abort_job(case_name + ": " + mpm_lig::printable(e.what()), mpm_lig::kExitBadCase);
   } catch (const std::exception& e) {
-    mpm_lig::abort_job(std::string("run failed: ") + e.what(), 1);
+    mpm_lig::abort_job("run failed: " + mpm_lig::printable(e.what()), 1);
   }
   return 0;
 }

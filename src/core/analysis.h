@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <mpi.h>
 
@@ -26,6 +27,13 @@ struct RunContext {
 class Analysis {
  public:
   virtual ~Analysis() = default;
+  //! Checks that need the run and not only the case: the rank count (rank groups, memory per
+  //! rank) and the folder the run writes into. Collective over `context.comm`; called by
+  //! `mpm_lig --validate` and before a run creates anything; a CaseError on failure.
+  virtual void check_run(const RunContext& /*context*/) const {}
+  //! What neither the constructor nor check_run() can know before the run, one line each,
+  //! for `mpm_lig --validate` to say (empty: everything was checked).
+  virtual std::vector<std::string> unchecked() const { return {}; }
   virtual void run(const RunContext& context) = 0;
   //! Whether run() can continue from a checkpoint (RunContext::resume).
   virtual bool supports_resume() const { return false; }

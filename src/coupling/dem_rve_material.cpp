@@ -1,11 +1,13 @@
 #include "coupling/dem_rve_material.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
 #include "core/mpi_session.h"
 #include "coupling/point_checkpoint.h"
+#include "dem/file_name.h"
 #include "rve/consolidation.h"
 #include "rve/snapshot.h"
 
@@ -79,6 +81,31 @@ std::string DemRveMaterial::point_label(std::size_t point) const {
 void DemRveMaterial::check_dimension(const CaseNode& node, int dimension) const {
   if (dimension == 3 && spec_.dimension == 2)
     node.child("rve").fail("dimension", "2D disc packings cannot serve a 3D MPM analysis");
+}
+
+void DemRveMaterial::check_run(std::size_t points, int ranks, const std::string& run_dir,
+                               MemoryBudget& budget) const {
+  if (ranks % ranks_per_rve_ != 0)
+    throw CaseError(path_ + ".ranks_per_rve", std::to_string(ranks_per_rve_) +
+                                                  " does not divide the " + std::to_string(ranks) +
+                                                  " MPI ranks of this run");
+  if (points > 0 && static_cast<std::size_t>(packing_count_) > points)
+    throw CaseError(path_ + ".packings", std::to_string(packing_count_) + " packings for " +
+                                             std::to_string(points) +
+                                             " material points: some would never be used");
+  const std::string unusable = dem::unusable_file_name(run_dir);
+  if (!unusable.empty())
+    throw CaseError(path_, "the DEM engine writes its packings into the output folder '" + run_dir +
+                               "': " + unusable);
+  // Each rank of a group holds its share of every RVE the group owns, and while preparing,
+  // one packing at a time.
+  const double groups = ranks / ranks_per_rve_;
+  const double rves = std::ceil(static_cast<double>(points) / groups);
+  budget.add(path_ + ".rve.grains",
+             (rves + 1.0) * rve::instance_memory_bytes(spec_) / ranks_per_rve_,
+             std::to_string(static_cast<long>(rves)) + " RVEs of " + std::to_string(spec_.grains) +
+                 " grains per rank group",
+             true);
 }
 
 void DemRveMaterial::prepare(const materials::MaterialContext& context) {

@@ -40,6 +40,9 @@ class DemRveMaterial final : public materials::Material {
   //! Collective: consolidate the packings into `context.work_dir` (or load rve.restart_file).
   void prepare(const materials::MaterialContext& context) override;
   void check_dimension(const CaseNode& node, int dimension) const override;
+  //! Rank groups, packings against points, engine file names under `run_dir`, RVE memory.
+  void check_run(std::size_t points, int ranks, const std::string& run_dir,
+                 MemoryBudget& budget) const override;
   double density() const override;
   double wave_modulus() const override;
   std::size_t add_points(std::size_t count) override;

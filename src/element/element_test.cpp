@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/resources.h"
+#include "dem/file_name.h"
 #include "element/strain_path.h"
 #include "io/csv_history.h"
 #include "io/summary.h"
@@ -20,11 +22,32 @@ namespace mpm_lig::element {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+//! Most strain increments an element test may take (each is at least one DEM run).
+constexpr double kMaxIncrements = 1e9;
 
 class ElementTest : public Analysis {
  public:
   ElementTest(rve::RveSpec rve, ElementTestSpec test) : rve_(std::move(rve)), test_(test) {}
   void run(const RunContext& context) override;
+
+  void check_run(const RunContext& context) const override {
+    const std::string unusable = dem::unusable_file_name(context.output_dir);
+    if (test_.save_restart && !unusable.empty())
+      throw CaseError("analysis.save_restart",
+                      "the DEM engine writes prepared.restart into the "
+                      "output folder '" +
+                          context.output_dir + "': " + unusable);
+    int ranks = 1;
+    MPI_Comm_size(context.comm, &ranks);
+    MemoryBudget budget;
+    budget.add("rve.grains", rve::instance_memory_bytes(rve_) / ranks,
+               "one RVE of " + std::to_string(rve_.grains) + " grains");
+    budget.check(context.comm);
+  }
+
+  std::vector<std::string> unchecked() const override {
+    return {"rve: the DEM packing (preparation or restart file contents)"};
+  }
 
  private:
   std::unique_ptr<rve::Rve> prepare(const RunContext& context, nlohmann::json& summary);
@@ -277,8 +300,10 @@ ElementTestSpec parse_element_test(const CaseNode& a, const rve::RveSpec& rve) {
     t.kind = TestKind::kUndrainedCyclicSimpleShear;
     t.shear_amplitude = a.in_range("shear_strain_amplitude", 1e-7, 2.0);
     t.cycles = a.get<int>("cycles");
-    if (t.cycles < 1)
-      a.fail("cycles", "must be >= 1");
+    // Four quarter cycles of amplitude / increment each; the count must stay a sane loop.
+    if (t.cycles < 1 || 4.0 * t.cycles * t.shear_amplitude / t.strain_increment > kMaxIncrements)
+      a.fail("cycles", "must be >= 1 and take at most " + std::to_string(long(kMaxIncrements)) +
+                           " strain increments");
   } else {
     t.kind = TestKind::kDrainedCompression;
     t.strain = a.in_range("axial_strain", 1e-7, 0.7);

@@ -9,6 +9,7 @@
 
 #include "core/case_node.h"
 #include "core/registry.h"
+#include "core/resources.h"
 #include "core/tensor.h"
 #include "materials/checkpoint_io.h"
 
@@ -49,6 +50,12 @@ class Material {
   //! Case-level check (`node` is the material's case node): fails with a CaseError when the
   //! material cannot serve an analysis of this dimension.
   virtual void check_dimension(const CaseNode& /*node*/, int /*dimension*/) const {}
+  //! Checks against the run before anything is created (`mpm_lig --validate` too): `points`
+  //! of this material on `ranks` MPI ranks, writing into `run_dir`. Adds to `budget` the memory
+  //! one rank needs for them beyond the MPM's own copy of the points; a CaseError naming the
+  //! material's JSON path when it cannot serve them.
+  virtual void check_run(std::size_t /*points*/, int /*ranks*/, const std::string& /*run_dir*/,
+                         MemoryBudget& /*budget*/) const {}
   //! Mass density [kg/m^3].
   virtual double density() const = 0;
   //! Largest constrained (P-wave) modulus the material can show [Pa]: sets the CFL time step.

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 #include "mpm/case_spec.h"
 #include "mpm/shape_function.h"
@@ -19,6 +20,17 @@ bool Box::contains(const double* x, int dimension, double tolerance) const {
 namespace {
 
 const std::vector<std::string> kAxes = {"x", "y", "z"};
+
+//! Bounds on lengths that keep the arithmetic far from overflow and denormals: cells of a
+//! micrometre (below any grain-scale model) to meshes of a thousand kilometres.
+constexpr double kMinCellLength = 1e-6;
+constexpr double kMaxMeshLength = 1e6;
+
+std::string number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
 
 std::vector<std::string> axes(int dimension) {
   return {kAxes.begin(), kAxes.begin() + dimension};
@@ -84,7 +96,7 @@ void read_analysis(const CaseNode& a, MpmCase& c) {
   if (end.has("time") == end.has("steps"))
     end.fail("give exactly one of \"time\" or \"steps\"");
   if (end.has("time"))
-    c.end_time = end.positive("time");
+    c.end_time = end.in_range("time", 1e-12, 1e12);
   else if ((c.end_steps = end.get<long>("steps")) < 1)
     end.fail("steps", "must be >= 1");
 
@@ -103,10 +115,15 @@ void read_mesh(const CaseNode& m, MpmCase& c) {
   if (cells.size() != static_cast<std::size_t>(c.dimension))
     m.fail("cells", "expected " + std::to_string(c.dimension) + " integers (one per axis)");
   for (int d = 0; d < c.dimension; ++d) {
-    if (!(c.size[d] > 0.0))
-      m.fail("size", "must be > 0 along " + kAxes[d]);
+    if (!(c.size[d] > 0.0 && c.size[d] <= kMaxMeshLength))
+      m.fail("size", "must be in (0, " + number(kMaxMeshLength) + "] m along " + kAxes[d]);
+    if (!(std::abs(c.origin[d]) <= kMaxMeshLength))
+      m.fail("origin", "must be within " + number(kMaxMeshLength) + " m of 0 along " + kAxes[d]);
     if (cells[d] < 1 || cells[d] > 100000)
       m.fail("cells", "must be between 1 and 100000 along " + kAxes[d]);
+    if (!(c.size[d] / cells[d] >= kMinCellLength))
+      m.fail("size", "cells of " + number(c.size[d] / cells[d]) + " m along " + kAxes[d] +
+                         " are smaller than " + number(kMinCellLength) + " m");
   }
   c.cells = cells;
   c.periodic.assign(c.dimension, false);
@@ -278,9 +295,14 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
     for (int d = 0; d < h; ++d) {
       if (!(f.width[d] > 0.0))
         r.fail("width", "must be > 0");
-      if (f.center[d] + 0.5 * f.width[d] <= c.origin[d] ||
-          f.center[d] - 0.5 * f.width[d] >= c.origin[d] + c.size[d])
+      const double lo = f.center[d] - 0.5 * f.width[d], hi = f.center[d] + 0.5 * f.width[d];
+      const double end = c.origin[d] + c.size[d], tol = 1e-9 * c.size[d];
+      if (hi <= c.origin[d] || lo >= end)
         r.fail("center", "the footing lies outside the mesh along " + kAxes[d]);
+      // Cut at a face (a half model) is fine; covering the whole top is a loaded layer.
+      if (lo <= c.origin[d] + tol && hi >= end - tol)
+        r.fail("width", "the footing covers the whole mesh width along " + kAxes[d] +
+                            ": no soil is left beside it");
     }
     f.base = r.get<double>("base");
     if (f.base < c.origin[h] || f.base > c.origin[h] + c.size[h])

@@ -7,7 +7,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
+
+#include "core/case_error.h"
+#include "core/resources.h"
 
 #include "mpm/checkpoint.h"
 #include "mpm/checkpoint_folder.h"
@@ -59,7 +63,14 @@ long main_stage_steps(const MpmCase& c, double dt) {
   if (c.end_steps > 0)
     return c.end_steps;
   // The last step may overshoot the end time by less than one step.
-  return static_cast<long>(std::ceil(c.end_time / dt - 1e-9));
+  const double steps = std::ceil(c.end_time / dt - 1e-9);
+  if (!(steps >= 1.0 && steps <= kMaxSteps)) {
+    std::ostringstream message;
+    message << "with the time step " << dt << " s the run would take " << c.end_time / dt
+            << " steps: it must take 1 ... " << kMaxSteps;
+    throw CaseError("analysis.end.time", message.str());
+  }
+  return static_cast<long>(steps);
 }
 
 void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir) {

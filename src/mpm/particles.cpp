@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "mpm/resources.h"
+
 namespace mpm_lig::mpm {
 namespace {
 
@@ -13,11 +15,11 @@ void fill_body(const MpmCase& c, int body_index, Particles<D>& p) {
   std::array<long, D> count{};
   Vec spacing, cell;
   long total = 1;
+  const std::vector<double> along = points_along_axes(c, body);
   for (int d = 0; d < D; ++d) {
     cell[d] = c.size[d] / c.cells[d];
-    const double extent = body.box.max[d] - body.box.min[d];
-    count[d] = std::max(1L, std::lround(extent / cell[d] * body.points_per_cell));
-    spacing[d] = extent / count[d];
+    count[d] = static_cast<long>(along[d]);
+    spacing[d] = (body.box.max[d] - body.box.min[d]) / count[d];
     total *= count[d];
   }
   const double volume = spacing.prod();

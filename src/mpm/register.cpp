@@ -5,6 +5,7 @@
 #include "coupling/register.h"
 #include "mpm/case_spec.h"
 #include "mpm/driver.h"
+#include "mpm/resources.h"
 #include "mpm/resume_check.h"
 
 namespace mpm_lig::mpm {
@@ -18,6 +19,33 @@ class MpmAnalysis final : public Analysis {
   explicit MpmAnalysis(MpmCase c) : case_(std::move(c)) {}
 
   bool supports_resume() const override { return true; }
+
+  void check_run(const RunContext& context) const override {
+    check_step_counts(case_);
+    int ranks = 1;
+    MPI_Comm_size(context.comm, &ranks);
+    const std::vector<double> points = points_per_material(case_);
+    MemoryBudget budget;
+    add_mpm_memory(case_, points, budget);
+    for (std::size_t m = 0; m < case_.materials.size(); ++m)
+      case_.materials[m]->check_run(static_cast<std::size_t>(points[m]), ranks, context.output_dir,
+                                    budget);
+    budget.check(context.comm);
+  }
+
+  std::vector<std::string> unchecked() const override {
+    std::vector<std::string> lines;
+    if (!case_.fixed_time_step && case_.end_steps == 0)
+      lines.push_back(
+          "analysis.end.time: the step count (1 ... 1e12), which needs the CFL time "
+          "step of the prepared materials");
+    for (std::size_t m = 0; m < case_.materials.size(); ++m) {
+      if (case_.materials[m]->has_snapshots())
+        lines.push_back("materials[" + std::to_string(m) +
+                        "]: the DEM packings (preparation or restart file contents)");
+    }
+    return lines;
+  }
 
   void run(const RunContext& context) override {
     int rank = 0;

@@ -6,6 +6,9 @@
 namespace mpm_lig::mpm {
 namespace {
 
+constexpr double kMinTime = 1e-9;  //!< [s]
+constexpr double kMaxTime = 1e12;  //!< [s]
+
 //! t / period modulo 1. A time within round-off of a quarter period counts as exactly that
 //! quarter: with a time step that divides T/4, t = n dt carries round-off, and a square wave
 //! would otherwise switch one step late now and then, so the triangular displacement of
@@ -49,13 +52,15 @@ TimeFunction TimeFunction::read(const CaseNode& node, const std::string& key) {
   const std::string type = fn.choice("type", {"constant", "ramp", "triangular", "square", "sine"});
   if (type == "constant")
     return f;
+  // Times far from 0 and infinity: t / time stays finite and its phase exact enough (a
+  // denormal period would make it infinite and every prescribed value NaN).
   if (type == "ramp") {
     f.kind = Kind::ramp;
-    f.time = fn.positive("time");
+    f.time = fn.in_range("time", kMinTime, kMaxTime);
     return f;
   }
   f.kind = type == "triangular" ? Kind::triangular : type == "square" ? Kind::square : Kind::sine;
-  f.time = fn.positive("period");
+  f.time = fn.in_range("period", kMinTime, kMaxTime);
   return f;
 }
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "dem/file_name.h"
 #include "dem/restart_check.h"
 
 namespace mpm_lig::rve {
@@ -122,6 +123,30 @@ SubstepSpec parse_substeps(const CaseNode& node) {
   return s;
 }
 
+//! LIGGGHTS refuses Young's moduli outside this range in SI units ("youngsModulus >= 5e6
+//! required for SI units"); LAMMPS has no such limit.
+constexpr double kLiggghtsMinYoungsModulus = 5e6;
+constexpr double kLiggghtsMaxYoungsModulus = 1e9;
+
+void check_engine_limits(const CaseNode& contact, const RveSpec& s) {
+  const double e = s.contact.youngs_modulus;
+  if (s.engine == "liggghts" && (e < kLiggghtsMinYoungsModulus || e > kLiggghtsMaxYoungsModulus))
+    contact.fail("youngs_modulus", "engine \"liggghts\" takes " +
+                                       number(kLiggghtsMinYoungsModulus) + " ... " +
+                                       number(kLiggghtsMaxYoungsModulus) + " Pa, got " + number(e) +
+                                       " (engine \"lammps\" has no such limit)");
+}
+
+//! The engine opens its log file itself: its folder must exist before the run.
+void check_log_folder(const CaseNode& node, const std::string& log_file) {
+  const std::filesystem::path folder = std::filesystem::path(log_file).parent_path();
+  std::error_code error;
+  if (!folder.empty() && !std::filesystem::is_directory(folder, error))
+    node.fail("log_file", "folder '" + folder.string() + "' does not exist");
+  if (std::filesystem::is_directory(log_file, error))
+    node.fail("log_file", "'" + log_file + "' is a folder");
+}
+
 }  // namespace
 
 double RadiusSpec::mean() const {
@@ -131,6 +156,11 @@ double RadiusSpec::mean() const {
   for (std::size_t i = 1; i < radii.size(); ++i)
     m += 0.5 * (radii[i] + radii[i - 1]) * (cumulative[i] - cumulative[i - 1]);
   return m;
+}
+
+double instance_memory_bytes(const RveSpec& spec) {
+  const double per_grain = spec.engine == "lammps" ? 1.95e6 / 400 : 1.1e6 / 400;
+  return per_grain * static_cast<double>(spec.grains);
 }
 
 double rayleigh_time_step(const RveSpec& spec) {
@@ -147,8 +177,10 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   if (s.dimension != 2 && s.dimension != 3)
     node.fail("dimension", "must be 2 (discs) or 3 (spheres), got " + std::to_string(s.dimension));
   // File names are relative to the case file's folder (the case runs from any directory).
-  if (node.has("log_file"))
+  if (node.has("log_file")) {
     s.log_file = node.file_path("log_file");
+    check_log_folder(node, s.log_file);
+  }
   // Default by measurement (README, method notes): with streaming velocities the quasi-static
   // strength converges as the strain rate goes down; with remapped positions it does not.
   const std::string affine = node.choice_or(
@@ -157,6 +189,7 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   s.max_kinetic_ratio = node.positive_or("max_kinetic_ratio", 1.0);
 
   s.contact = parse_contact(node.child("contact"));
+  check_engine_limits(node.child("contact"), s);
   if (s.contact.cohesion_energy_density && s.engine != "liggghts")
     node.child("contact").fail("cohesion_energy_density",
                                "cohesion (sjkr) is available with engine \"liggghts\" only");
@@ -170,6 +203,9 @@ RveSpec parse_rve_spec(const CaseNode& node) {
     s.restart_file = node.file_path("restart_file");
     if (!std::filesystem::is_regular_file(s.restart_file))
       node.fail("restart_file", "no such file '" + s.restart_file + "'");
+    const std::string unusable = dem::unusable_file_name(s.restart_file);
+    if (!unusable.empty())
+      node.fail("restart_file", "'" + s.restart_file + "': " + unusable);
   }
   s.grains = node.get<long>("grains");
   if (s.grains < kMinGrains)

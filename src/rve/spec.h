@@ -75,6 +75,11 @@ inline constexpr long kMinGrains = 50;
 //! Read and validate an RVE node; every problem is a CaseError naming its JSON path.
 RveSpec parse_rve_spec(const CaseNode& node);
 
+//! Memory of one engine instance holding this RVE [bytes], from measurements of idle
+//! 400-grain instances (docs/DESIGN.md: 1.1 MB in LIGGGHTS, 1.95 MB in LAMMPS), taken as
+//! proportional to the grain count.
+double instance_memory_bytes(const RveSpec& spec);
+
 //! Rayleigh time step of the smallest grain [s].
 double rayleigh_time_step(const RveSpec& spec);
 
