@@ -18,7 +18,8 @@ Category hook: `--extra FILE.py` runs FILE.py with `probe`, `Probe`, `REPO`, `ca
 and `run_in` in its namespace; every function it decorates with @probe(category, name, ...)
 joins the catalogue (e.g. checkpoint and resume scenarios).
 
-Exit status: 0, or with --strict 1 when a probe run was not clean.
+Exit status: 0; with --strict 1 when a probe run was not clean; 77 when every selected probe
+was skipped (a full-disk probe where no tmpfs can be mounted).
 """
 import argparse
 import copy
@@ -46,6 +47,7 @@ ELEMENT = REPO / "cases/element_quickstart.json"  # element test on one RVE
 MAX_MESSAGE_BYTES = 20000  # a message longer than this is not a message
 MEMORY_LIMIT_BYTES = 8 << 30  # address space of a probed process: protects a shared machine
 MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe"]
+SKIPPED = 77  # exit status when every selected probe was skipped (CTest SKIP_RETURN_CODE)
 
 
 @dataclass
@@ -641,7 +643,9 @@ def main():
     if a.json:
         Path(a.json).write_text(json.dumps({"binary": binary, "categories": categories,
                                             "total": total, "probes": results}, indent=1))
-    return 1 if a.strict and total["clean"] < total["tried"] else 0
+    if a.strict and total["clean"] < total["tried"]:
+        return 1
+    return SKIPPED if total["tried"] == 0 and total["skipped"] > 0 else 0
 
 
 if __name__ == "__main__":

@@ -6,7 +6,7 @@ namespace mpm_lig::dem {
 
 //! Why `name` cannot be given to a DEM engine as a file name, or "" when it can.
 //!
-//! The engines parse file names like any other word of their input (docs/DESIGN.md, "LIGGGHTS
+//! The engines parse file names like any other word of their input (docs/DESIGN.md §3.8, "LIGGGHTS
 //! input parsing applies to file names"): unquoted, a space splits the name, `$` starts a
 //! variable and `#` a comment. Inside double quotes all three are plain characters, so
 //! quoted_file_name() takes them. What no quoting saves: a double quote, a line break or other

@@ -292,6 +292,7 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
     Footing f;
     f.center = read_vector(r, "center", h);
     f.width = read_vector(r, "width", h);
+    int covered = 0;  // horizontal axes along which the footing spans the whole mesh
     for (int d = 0; d < h; ++d) {
       if (!(f.width[d] > 0.0))
         r.fail("width", "must be > 0");
@@ -299,11 +300,12 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
       const double end = c.origin[d] + c.size[d], tol = 1e-9 * c.size[d];
       if (hi <= c.origin[d] || lo >= end)
         r.fail("center", "the footing lies outside the mesh along " + kAxes[d]);
-      // Cut at a face (a half model) is fine; covering the whole top is a loaded layer.
-      if (lo <= c.origin[d] + tol && hi >= end - tol)
-        r.fail("width", "the footing covers the whole mesh width along " + kAxes[d] +
-                            ": no soil is left beside it");
+      // Cut at a face (a half model) is fine, and so is a strip across a 3D slab; covering the
+      // whole top is a loaded layer, not a footing.
+      covered += lo <= c.origin[d] + tol && hi >= end - tol;
     }
+    if (covered == h)
+      r.fail("width", "the footing covers the whole top of the mesh: no soil is left beside it");
     f.base = r.get<double>("base");
     if (f.base < c.origin[h] || f.base > c.origin[h] + c.size[h])
       r.fail("base", "lies outside the mesh");

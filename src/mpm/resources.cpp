@@ -9,7 +9,7 @@
 namespace mpm_lig::mpm {
 namespace {
 
-//! Peak memory of one-step runs with fields written (docs/limits.md), rounded up: 2D 5e5 and
+//! Peak memory of one-step runs with fields written (docs/running.md §4), rounded up: 2D 5e5 and
 //! 2e6 points took 0.59 and 2.28 GB; 3D 2.6e5 and 8.6e5 points took 0.52 and 1.71 GB.
 constexpr double kBytesPerPoint[] = {0.0, 0.0, 1300.0, 2500.0};
 constexpr double kBytesPerNode[] = {0.0, 0.0, 200.0, 300.0};

@@ -15,7 +15,7 @@ std::vector<double> points_along_axes(const MpmCase& c, const Body& body);
 std::vector<double> points_per_material(const MpmCase& c);
 
 //! Adds to `budget` the memory of the MPM itself (grid and material points, replicated on
-//! every rank), measured per node and per point on this build (docs/limits.md).
+//! every rank), measured per node and per point (docs/running.md §4).
 void add_mpm_memory(const MpmCase& c, const std::vector<double>& points, MemoryBudget& budget);
 
 //! A CaseError when a stage would take more than kMaxSteps steps (the main stage with a
