@@ -6,22 +6,13 @@ usage: compare_runs.py REFERENCE_DIR OTHER_DIR... [--ranks N...]
 Each summary.json must say the run had the given number of ranks (--ranks, one per dir)."""
 import argparse
 import json
+import os
 import sys
 
-import h5py
 import numpy as np
 
-
-def datasets(path):
-    out = {}
-    with h5py.File(path, "r") as f:
-        def visit(name, obj):
-            if isinstance(obj, h5py.Dataset):
-                out[name] = obj[()]
-            for key, value in obj.attrs.items():
-                out[name + "@" + key] = np.asarray(value)
-        f.visititems(visit)
-    return out
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from mpm_lig_post.fields import every_item as datasets  # noqa: E402
 
 
 def main():

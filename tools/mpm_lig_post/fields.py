@@ -59,3 +59,19 @@ class StepFields:
             raise InputError(f"{self.path}: step {self.step}: missing dataset '{name}' "
                              f"(has: {', '.join(self.group)})")
         return np.asarray(self.group[name][()])
+
+
+def every_item(path):
+    """Every dataset and attribute of an HDF5 file as {"group/name": array,
+    "group/name@attribute": array}: what bit-identity checks compare."""
+    if h5py is None:
+        raise InputError("python3-h5py is not installed (apt-get install python3-h5py)")
+    out = {}
+    with h5py.File(path, "r") as f:
+        def visit(name, obj):
+            if isinstance(obj, h5py.Dataset):
+                out[name] = obj[()]
+            for key, value in obj.attrs.items():
+                out[name + "@" + key] = np.asarray(value)
+        f.visititems(visit)
+    return out
