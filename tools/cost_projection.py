@@ -19,19 +19,8 @@ import json
 import math
 import sys
 
-
-class InputError(Exception):
-    pass
-
-
-def load_json(path):
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except OSError as e:
-        raise InputError(f"cannot read {path}: {e.strerror}")
-    except json.JSONDecodeError as e:
-        raise InputError(f"{path}: not JSON ({e})")
+from mpm_lig_post.errors import InputError
+from mpm_lig_post.tables import read_json
 
 
 def need(node, key, where):
@@ -75,7 +64,7 @@ def case_rves(case, where):
 
 def measure(run_dir, case_path):
     where = f"{run_dir}/summary.json"
-    s = load_json(where)
+    s = read_json(where)
     wall = need(s, "wall_seconds", where)
     ranks = need(s, "ranks", where)
     psteps = need(s, "dem_particle_steps", where)
@@ -98,7 +87,7 @@ def measure(run_dir, case_path):
         "core_seconds_per_mpm_step_per_rve": ranks * stepping / (steps * rves),
     }
     if case_path:
-        case = load_json(case_path)
+        case = read_json(case_path)
         grains = [g for _, g in case_rves(case, case_path)]
         if len(set(grains)) == 1:
             m["grains"] = grains[0]
@@ -125,7 +114,7 @@ def target_steps(case, path, runs, notes):
 
 
 def project(runs, target_path, substeps=None, time_step=None, rate=None):
-    case = load_json(target_path)
+    case = read_json(target_path)
     notes = []
     rves = case_rves(case, target_path)
     if time_step:

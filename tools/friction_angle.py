@@ -11,12 +11,16 @@ With runs at two or more confining pressures the fit separates friction from coh
 per-run mobilised angles are printed too.
 """
 import argparse
-import csv
 import json
 import math
-import sys
 
 import numpy as np
+
+from mpm_lig_post import cli
+from mpm_lig_post.errors import InputError
+from mpm_lig_post.tables import read_history, read_json, require_columns
+
+STRESS_COLUMNS = ("s_xx", "s_yy", "s_zz", "s_xy", "s_xz", "s_yz")
 
 
 def principal(row, dimension):
@@ -30,20 +34,23 @@ def principal(row, dimension):
 
 
 def peak_state(run_dir):
-    summary = json.load(open(f"{run_dir}/summary.json"))
-    dimension = summary["dimension"]
+    summary = read_json(f"{run_dir}/summary.json")
+    if "dimension" not in summary:
+        raise InputError(f"{run_dir}/summary.json: missing key 'dimension'")
+    history_path = f"{run_dir}/history.csv"
+    table = read_history(history_path)
+    require_columns(table, STRESS_COLUMNS, history_path)
     best = None
-    with open(f"{run_dir}/history.csv") as f:
-        for raw in csv.DictReader(f):
-            row = {k: float(v) for k, v in raw.items()}
-            s1, s3 = principal(row, dimension)
-            if s1 + s3 <= 0:
-                continue
-            ratio = (s1 - s3) / (s1 + s3)
-            if best is None or ratio > best[0]:
-                best = (ratio, s1, s3)
+    for k in range(len(table["s_xx"])):
+        row = {name: table[name][k] for name in STRESS_COLUMNS}
+        s1, s3 = principal(row, summary["dimension"])
+        if s1 + s3 <= 0:
+            continue
+        ratio = (s1 - s3) / (s1 + s3)
+        if best is None or ratio > best[0]:
+            best = (ratio, s1, s3)
     if best is None:
-        sys.exit(f"{run_dir}: no loaded state in history.csv")
+        raise InputError(f"{history_path}: no loaded state")
     return summary, best
 
 
@@ -80,8 +87,9 @@ def main():
     else:
         print("one run only: give runs at two or more confining pressures for a fit")
     if args.json:
-        json.dump(result, open(args.json, "w"), indent=2)
+        with open(args.json, "w") as f:
+            json.dump(result, f, indent=2)
 
 
 if __name__ == "__main__":
-    main()
+    cli.run(main)

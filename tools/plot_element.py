@@ -1,32 +1,41 @@
 #!/usr/bin/python3
-"""Plot an mpm_lig element test: usage plot_element.py RUN_DIR [--output FILE.png]
+"""Plot an mpm_lig element test: usage plot_element.py RUN_DIR [-o FILE.png] [--dpi N]
 
 Four panels from RUN_DIR/history.csv: q against the test's strain (axial, shear or per-axis),
 stress ratio q/p, volumetric strain (drained) or p (undrained/isotropic), and void ratio.
 """
-import argparse
-import csv
-import json
+import os
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from mpm_lig_post import cli  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
+
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("run")
-    parser.add_argument("--output", help="image file (default RUN/element.png)")
-    args = parser.parse_args()
-    summary = json.load(open(f"{args.run}/summary.json"))
-    rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(f"{args.run}/history.csv"))]
-    col = lambda name: [r[name] for r in rows]
+    args = cli.parser(__doc__.split("\n")[0], "element.png").parse_args()
+    run = cli.output_dir(args)
+    summary = read_json(os.path.join(run, "summary.json"))
+    for key in ("test", "dimension", "grains", "engine"):
+        if key not in summary:
+            raise InputError(f"{run}/summary.json: missing key '{key}'")
+    history_path = os.path.join(run, "history.csv")
+    table = read_history(history_path)
+    require_columns(table, ("p", "q", "void_ratio"), history_path)
+
+    def col(name):
+        require_columns(table, (name,), history_path)
+        return table[name]
+
     test, dim = summary["test"], summary["dimension"]
     axial = "e_yy" if dim == 2 else "e_zz"
     if test == "undrained_cyclic_simple_shear":
         x, xlabel = [100 * g for g in col("gamma_xy")], "shear strain γ [%]"
-        shear = [r["s_xy"] / 1e3 for r in rows]
+        shear = col("s_xy") / 1e3
     elif test == "isotropic_compression":
         x, xlabel = [-100 * e for e in col("e_xx")], "per-axis strain [%]"
     else:
@@ -59,10 +68,10 @@ def main():
     ax[1, 1].set_ylabel("void ratio")
     fig.suptitle(f"{test}, {summary['grains']} grains, {summary['engine']}")
     fig.tight_layout()
-    out = args.output or f"{args.run}/element.png"
-    fig.savefig(out, dpi=120)
+    out = cli.picture_path(args)
+    fig.savefig(out, dpi=args.dpi)
     print(out)
 
 
 if __name__ == "__main__":
-    main()
+    cli.run(main)
