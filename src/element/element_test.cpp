@@ -193,6 +193,8 @@ void ElementTest::run(const RunContext& context) {
       {"rayleigh_time_step", rve_.rayleigh_time_step},
       {"affine_motion", rve_.stream_velocity ? "streaming_velocity" : "remap_positions"}};
   auto rve = prepare(context, summary);
+  const double preparation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rve::Observables now = rve->observe();
   rve->check_health(now);
   double confining = test_.confining_pressure > 0.0 ? test_.confining_pressure
@@ -271,6 +273,11 @@ void ElementTest::run(const RunContext& context) {
   summary["dem_particle_steps"] = steps;
   summary["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  int ranks = 1;
+  MPI_Comm_size(context.comm, &ranks);
+  // As the MPM summary: cost tools count stepping time (wall minus preparation) per core.
+  summary["ranks"] = ranks;
+  summary["time_split"] = {{"preparation", preparation_seconds}};
   if (writer)
     io::write_json((dir / "summary.json").string(), summary);
 }
