@@ -1,0 +1,51 @@
+#!/usr/bin/python3
+"""A stand-in for mpm_lig with known answers, for check_accuracy_cost.py.
+
+    fake_mpm_lig.py --validate CASE      exit 2 naming rve.grains when it is not positive
+    fake_mpm_lig.py CASE --output DIR    a footing history and summary from the case's knobs
+
+With I = rve.substeps.inertial_number, g = rve.grains and s = rve.seed:
+    q/q_s = 10 (1 + 10 I) + 0.1 (s - 2) + (0.05 if g == 200), constant over s/B in [0, 0.5]
+    particle-steps = g x 100 / I; stepping takes particle-steps / 1e6 s (8e5 when g == 200),
+    plus 1 s of packing preparation. Each run appends the case path to $FAKE_MPM_LIG_LOG.
+"""
+import json
+import os
+import sys
+
+
+def main():
+    args = sys.argv[1:]
+    if args[0] == "--validate":
+        case = json.load(open(args[1]))
+        if case["rve"]["grains"] <= 0:
+            print(f"mpm_lig: {args[1]}: rve.grains: must be > 0", file=sys.stderr)
+            return 2
+        print("valid")
+        return 0
+    case_path, out = args[0], args[args.index("--output") + 1]
+    case = json.load(open(case_path))
+    if os.environ.get("FAKE_MPM_LIG_LOG"):
+        with open(os.environ["FAKE_MPM_LIG_LOG"], "a") as log:
+            log.write(case_path + "\n")
+    rve = case["rve"]
+    rate = 8e5 if rve["grains"] == 200 else 1e6
+    inertial = rve["substeps"]["inertial_number"]
+    ratio = 10 * (1 + 10 * inertial) + 0.1 * (rve["seed"] - 2) + (0.05 if rve["grains"] == 200 else 0)
+    surcharge = abs(case["boundary_conditions"][0]["traction"][-1])
+    width = case["rigid_bodies"][0]["width"][0]
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "history.csv"), "w") as f:
+        f.write("step,settlement,q\n")
+        for k in range(51):
+            f.write(f"{k},{0.01 * k * width:.17g},{ratio * surcharge:.17g}\n")
+    particle_steps = rve["grains"] * 100 / inertial
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump({"wall_seconds": 1.0 + particle_steps / rate, "ranks": 1, "rve_count": 1,
+                   "mpm_steps": 50, "dem_particle_steps": particle_steps,
+                   "time_split": {"preparation": 1.0, "output": 0.0}}, f)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,227 @@
+"""Collect a study's finished variants (summary.json, history.csv) into errors and costs, and
+write them: the printed table, accuracy_cost.json, accuracy_cost.csv and accuracy_cost.png."""
+import csv
+import json
+import os
+
+import numpy as np
+
+from . import figures
+from .errors import InputError
+from .quantities import SCALAR, Run
+from .tables import read_json
+from .tradeoff import (cheapest_within, error, noise_floor, pareto_front, predict_costs,
+                       reference_value)
+
+TARGETS = (0.01, 0.05, 0.15)
+
+
+def _cost(summary, ranks):
+    """wall s, core-s, stepping core-s (without packing preparation and output), particle-steps,
+    DEM updates (RVEs x steps)."""
+    wall = float(summary["wall_seconds"])
+    ranks = int(summary.get("ranks", ranks))
+    split = summary.get("time_split", {})
+    stepping = wall - split.get("preparation", 0.0) - split.get("output", 0.0)
+    steps = summary.get("mpm_steps", summary.get("increments", 0))
+    rves = summary.get("rve_count", 1)
+    return {"wall_seconds": wall, "ranks": ranks, "core_seconds": wall * ranks,
+            "stepping_core_seconds": stepping * ranks,
+            "particle_steps": float(summary.get("dem_particle_steps", 0.0)),
+            "rve_steps": float(rves * steps)}
+
+
+def _measure(run, measures):
+    values = {}
+    for q in measures:
+        try:
+            values[q.name] = q.measure(run)
+        except InputError as e:
+            raise InputError(f"{run.directory}: {q.name}: {e}") from None
+    return values
+
+
+def collect(study, variants, measures, output, ranks):
+    """Per variant: status, settings, cost and quantity values; then errors against the
+    reference's seed mean, noise floors, Pareto fronts and the cost model."""
+    rows = []
+    for v in variants:
+        d = os.path.join(output, "variants", v.folder)
+        row = {"name": v.name, "folder": v.folder, "label": v.label(study.knobs),
+               "settings": v.settings,
+               "seed": v.seed, "reference": v.reference, "status": "not run"}
+        summary = read_json(os.path.join(d, "run", "summary.json"), required=False)
+        code = open(os.path.join(d, "exit_code")).read().strip() if os.path.isfile(
+            os.path.join(d, "exit_code")) else None
+        if summary is not None and code == "0":
+            row["status"] = "done"
+            row.update(_cost(summary, ranks))
+            case = read_json(os.path.join(d, "case.json"))
+            row["values"] = _measure(Run(os.path.join(d, "run"), case), measures)
+        elif code is not None:
+            row["status"] = f"failed (exit {code})"
+        rows.append(row)
+    done = [r for r in rows if r["status"] == "done"]
+    refs = [r for r in done if r["reference"]]
+    if not refs:
+        raise InputError(f"{output}: the reference variant has not finished: no errors to measure")
+    result = {"title": study.title, "base": study.base_path, "knobs": study.knobs,
+              "reference": study.reference, "seeds": study.seeds, "variants": rows,
+              "quantities": {}}
+    for q in measures:
+        seed_values = [r["values"][q.name] for r in refs]
+        ref = reference_value(q.kind, seed_values)
+        floor = noise_floor(q.kind, seed_values, ref)
+        for r in done:
+            r.setdefault("errors", {})[q.name] = error(q.kind, r["values"][q.name], ref)
+        points = [(r["core_seconds"], r["errors"][q.name]) for r in done
+                  if r["errors"][q.name] is not None]
+        names = [r["name"] for r in done if r["errors"][q.name] is not None]
+        front = [names[i] for i in pareto_front(points)]
+        recommended = {}
+        for t in TARGETS:
+            i = cheapest_within(points, t)
+            recommended[f"{100 * t:g} %"] = names[i] if i is not None else None
+        result["quantities"][q.name] = {
+            "kind": q.kind, "unit": q.unit, "noise_floor": floor,
+            "reference_value": ref if q.kind == SCALAR or ref is None else "mean of seeds",
+            "pareto_front": front, "recommended": recommended}
+    if len(done) >= 2 and all(r["particle_steps"] > 0 for r in done):
+        predicted, errs, rate = predict_costs([r["particle_steps"] for r in done],
+                                              [r["stepping_core_seconds"] for r in done])
+        for r, p, e in zip(done, predicted, errs):
+            r["predicted_stepping_core_seconds"], r["prediction_error"] = p, e
+        worst = max(done, key=lambda r: abs(r["prediction_error"]))
+        result["cost_model"] = {
+            "rule": "stepping core-s = particle-steps / rate; rate = median particle-steps per "
+                    "stepping core-second of the other variants (leave one out)",
+            "rate_particle_steps_per_core_second": rate,
+            "worst_prediction_error": worst["prediction_error"], "worst_variant": worst["name"]}
+    return result
+
+
+def _fmt(x, spec=".4g"):
+    return "-" if x is None else format(x, spec)
+
+
+def _pct(x):
+    return "-" if x is None else f"{100 * x:.3g} %"
+
+
+def print_table(result, measures):
+    names = [q.name for q in measures]
+    head = f"{'variant':6s} {'settings':44s} " + " ".join(f"{n[:18]:>18s} {'err':>8s}"
+                                                          for n in names)
+    head += f" {'wall s':>8s} {'core-s':>8s} {'p-steps':>9s} {'model':>7s}"
+    print(head)
+    for r in result["variants"]:
+        line = f"{r['name']:6s} {r['label'][:44]:44s} "
+        if r["status"] != "done":
+            print(line + r["status"])
+            continue
+        for n in names:
+            v = r["values"][n]
+            line += f"{(_fmt(v) if isinstance(v, float) else ('series' if v is not None else '-')):>18s} "
+            line += f"{_pct(r['errors'][n]):>8s} "
+        line += (f"{r['wall_seconds']:8.1f} {r['core_seconds']:8.1f} {r['particle_steps']:9.3g} "
+                 f"{_pct(r.get('prediction_error')):>7s}")
+        print(line)
+    for n, q in result["quantities"].items():
+        print(f"{n}: noise floor {_pct(q['noise_floor'])}, Pareto front "
+              f"{' '.join(q['pareto_front'])}; cheapest within "
+              + ", ".join(f"{t}: {v or 'none'}" for t, v in q["recommended"].items()))
+    if "cost_model" in result:
+        m = result["cost_model"]
+        print(f"cost model: {m['rate_particle_steps_per_core_second']:.4g} particle-steps per "
+              f"core-s; worst prediction error {100 * m['worst_prediction_error']:+.1f} % "
+              f"({m['worst_variant']})")
+
+
+def _jsonable(x):
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    if isinstance(x, tuple):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, dict):
+        return {k: _jsonable(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    return x
+
+
+def write_csv(result, measures, path):
+    cost = ["wall_seconds", "core_seconds", "stepping_core_seconds", "particle_steps",
+            "predicted_stepping_core_seconds", "prediction_error"]
+    knobs = result["knobs"]
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["variant", "status", "reference", "seed", *knobs, *cost,
+                    *[c for q in measures for c in (q.name, f"{q.name} error")]])
+        for r in result["variants"]:
+            row = [r["name"], r["status"], int(r["reference"]), r["seed"] if r["seed"] is not None
+                   else "", *[r["settings"][k] for k in knobs], *[r.get(c, "") for c in cost]]
+            for q in measures:
+                v = r.get("values", {}).get(q.name)
+                e = r.get("errors", {}).get(q.name)
+                row += [v if isinstance(v, float) else "", "" if e is None else e]
+            w.writerow(row)
+
+
+def _short_label(row, result):
+    """The settings that differ from the reference's (and the seed): 'ref' for the reference."""
+    from .study_spec import short_name
+    parts = [f"{short_name(k)}={v:g}" if isinstance(v, float) else f"{short_name(k)}={v}"
+             for k, v in row["settings"].items() if v != result["reference"][k]]
+    if row["seed"] is not None:
+        parts.append(f"seed {row['seed']}")
+    return "\n".join(parts) if parts else "ref"
+
+
+def draw(result, measures, path, dpi):
+    done = [r for r in result["variants"] if r["status"] == "done"]
+    n = len(measures)
+    cols = min(n, 2)
+    rows_ = (n + cols - 1) // cols
+    fig, axes = figures.subplots(rows_, cols, figsize=(6.2 * cols, 4.6 * rows_), squeeze=False)
+    for ax, q in zip(axes.flat, measures):
+        info = result["quantities"][q.name]
+        pts = [(r["core_seconds"], r["errors"][q.name], r) for r in done
+               if r["errors"][q.name] is not None]
+        if not pts:
+            ax.set_title(f"{q.name}: no value")
+            continue
+        floor_y = 1e-4
+        ys = [max(e, floor_y) for _, e, _ in pts]
+        for (c, _, r), y in zip(pts, ys):
+            ax.plot(c, 100 * y, "s" if r["reference"] else "o", color="C1" if r["reference"]
+                    else "C0", ms=5)
+            ax.annotate(_short_label(r, result), (c, 100 * y), fontsize=6,
+                        xytext=(3, 3), textcoords="offset points")
+        front = [next(p for p in pts if p[2]["name"] == name) for name in info["pareto_front"]]
+        ax.step([c for c, _, _ in front], [100 * max(e, floor_y) for _, e, _ in front],
+                where="post", color="C3", lw=1.2, label="Pareto front")
+        if info["noise_floor"]:
+            ax.axhspan(100 * floor_y, 100 * info["noise_floor"], color="0.85", zorder=0,
+                       label=f"noise floor (seeds) {100 * info['noise_floor']:.2g} %")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("cost [core-seconds]")
+        ax.set_ylabel(f"error of {q.name} [%] (0 drawn at {100 * floor_y:g})")
+        ax.set_title(q.name)
+        ax.legend(loc="best", frameon=False, fontsize=8)
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    fig.suptitle(f"accuracy against cost: {result['title']}")
+    fig.tight_layout()
+    figures.save(fig, path, dpi)
+
+
+def write_report(study, result, measures, output, dpi):
+    print_table(result, measures)
+    with open(os.path.join(output, "accuracy_cost.json"), "w") as f:
+        json.dump(_jsonable(result), f, indent=1)
+    write_csv(result, measures, os.path.join(output, "accuracy_cost.csv"))
+    draw(result, measures, os.path.join(output, "accuracy_cost.png"), dpi)
+    print(f"wrote {output}/accuracy_cost.json, accuracy_cost.csv")

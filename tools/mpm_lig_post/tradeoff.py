@@ -1,0 +1,105 @@
+"""Accuracy against cost: each variant's relative error against the reference (the mean over
+the reference's seeds), the reference's seed-to-seed scatter as the noise floor, the Pareto
+front of error over core-seconds, and the rate cost model with its prediction errors.
+
+Errors are relative: a scalar |Q - Q_ref| / |Q_ref|; a curve the RMS over the reference's x of
+the difference, over max |y_ref|; a per-cycle series the RMS of Q_c / Q_ref,c - 1 over the
+cycles both have. The noise floor is the same measure's sample standard deviation over the
+reference's seeds (n - 1 in the denominator).
+"""
+import math
+
+import numpy as np
+
+from .quantities import CURVE, SCALAR, SERIES
+
+
+def _curve_on(x_ref, curve):
+    x, y = curve
+    order = np.argsort(x)
+    return np.interp(x_ref, np.asarray(x)[order], np.asarray(y)[order], left=np.nan,
+                     right=np.nan)
+
+
+def reference_value(kind, values):
+    """The mean of the reference's seeds (values: one per seed, None where not reached)."""
+    values = [v for v in values if v is not None]
+    if not values:
+        return None
+    if kind == SCALAR:
+        return float(np.mean(values))
+    if kind == SERIES:
+        n = min(len(v) for v in values)
+        return np.mean([np.asarray(v[:n]) for v in values], axis=0)
+    x = np.asarray(values[0][0])
+    ys = np.array([_curve_on(x, v) for v in values])
+    keep = ~np.isnan(ys).any(axis=0)
+    return x[keep], ys[:, keep].mean(axis=0)
+
+
+def deviation(kind, value, ref):
+    """Signed (scalar) or RMS (curve, series) difference from the reference, relative."""
+    if value is None or ref is None:
+        return None
+    if kind == SCALAR:
+        return (value - ref) / abs(ref) if ref != 0 else None
+    if kind == SERIES:
+        n = min(len(value), len(ref))
+        if n == 0:
+            return None
+        return float(np.sqrt(np.mean((np.asarray(value[:n]) / ref[:n] - 1.0) ** 2)))
+    x_ref, y_ref = ref
+    y = _curve_on(x_ref, value)
+    inside = ~np.isnan(y)
+    scale = np.max(np.abs(y_ref))
+    if not inside.any() or scale == 0:
+        return None
+    return float(np.sqrt(np.mean((y[inside] - y_ref[inside]) ** 2)) / scale)
+
+
+def error(kind, value, ref):
+    """The relative error (>= 0) of a value against the reference value."""
+    d = deviation(kind, value, ref)
+    return None if d is None else abs(d)
+
+
+def noise_floor(kind, seed_values, ref):
+    """The reference's seed-to-seed scatter in the error's own measure (None: fewer than 2)."""
+    d = [deviation(kind, v, ref) for v in seed_values]
+    d = [x for x in d if x is not None]
+    if len(d) < 2:
+        return None
+    if kind == SCALAR:
+        return float(np.std(d, ddof=1))
+    return float(math.sqrt(sum(x * x for x in d) / (len(d) - 1)))
+
+
+def pareto_front(points):
+    """Indices of the points (cost, error) that no other point beats on both, by cost."""
+    front, best = [], math.inf
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+    for i in order:
+        if points[i][1] < best:
+            front.append(i)
+            best = points[i][1]
+    return front
+
+
+def cheapest_within(points, target):
+    """Index of the cheapest point with error <= target, or None."""
+    inside = [i for i, (_, e) in enumerate(points) if e <= target]
+    return min(inside, key=lambda i: points[i][0]) if inside else None
+
+
+def predict_costs(particle_steps, core_seconds):
+    """The rate model: core-s = particle-steps / rate, the rate being the median of the OTHER
+    variants' particle-steps per core-second (leave one out, so no variant predicts itself).
+    Returns (predicted core-s, relative prediction error) per variant, and the overall rate."""
+    rates = [p / c for p, c in zip(particle_steps, core_seconds)]
+    predicted, errors = [], []
+    for i, p in enumerate(particle_steps):
+        others = rates[:i] + rates[i + 1:]
+        rate = float(np.median(others)) if others else rates[i]
+        predicted.append(p / rate)
+        errors.append(p / rate / core_seconds[i] - 1.0)
+    return predicted, errors, float(np.median(rates))
