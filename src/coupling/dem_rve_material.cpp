@@ -1,5 +1,6 @@
 #include "coupling/dem_rve_material.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include "coupling/point_checkpoint.h"
 #include "dem/file_name.h"
 #include "rve/consolidation.h"
+#include "rve/observables.h"
 #include "rve/snapshot.h"
 
 namespace mpm_lig::coupling {
@@ -207,8 +209,18 @@ void DemRveMaterial::create_rves() {
                                     layout_->group_comm(), point_label(p));
     }));
   }
+  start_work_ledger();
   cost_.simulations = points_;
   cost_.preparation_seconds += MPI_Wtime() - start;
+}
+
+void DemRveMaterial::start_work_ledger() {
+  // A packing read from a restart file has no preparation pressure: its own stress stands in.
+  double p = spec_.preparation.confining_pressure;
+  if (p <= 0.0 && !packings_.empty())
+    p = rve::mean_stress(packings_.front().stress, spec_.dimension);
+  work_.start(points_, static_cast<double>(spec_.grains),
+              spec_.substeps.fixed > 0 ? 0 : spec_.substeps.max, p);
 }
 
 void DemRveMaterial::inject_fault_if_asked(std::size_t point, rve::Rve& rve) const {
@@ -262,8 +274,12 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
   std::vector<double> owned_steps;
   deform_owned(batch_index, dF, owned_stress, owned_steps);
   const double computed = MPI_Wtime();
+  const std::vector<Mat3> before = stress_;
   stress_ = layout_->gather(owned_stress);
   substeps_ = layout_->gather(owned_steps, 1);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    work_.add(points[i], substeps_[points[i]], rve::mean_stress(before[points[i]], spec_.dimension),
+              dF[i]);
   cost_.compute_seconds += computed - start;
   cost_.communication_seconds += MPI_Wtime() - computed;
   // Every rank knows every RVE's step count: the total needs no reduction.
@@ -292,7 +308,9 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
     rve::Rve& rve = *rves_[layout_->local_index(p)];
     or_end_job(point_label(p) + ": checkpoint not written (the previous one is kept)",
                [&] { rve.write_checkpoint(checkpoint_file(out.folder(), p)); });
-    pack(PointCheckpoint{stress_[p], substeps_[p], rve.state()}, owned);
+    PointCheckpoint saved{stress_[p], substeps_[p], rve.state()};
+    std::copy(work_.row(p), work_.row(p) + DemWork::kValues, saved.work);
+    pack(saved, owned);
   }
   write_points(out, layout_->gather(owned, static_cast<int>(point_checkpoint_width())));
   out.set("updates", static_cast<double>(updates_));
@@ -310,10 +328,12 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
   stress_.resize(points_);
   substeps_.resize(points_);
   rves_.clear();
+  start_work_ledger();
   for (std::size_t p = 0; p < points_; ++p) {
     const PointCheckpoint saved = unpack(rows.data() + p * point_checkpoint_width());
     stress_[p] = saved.stress;
     substeps_[p] = saved.substeps;
+    work_.restore_row(p, saved.work);
     if (!layout_->owns(p))
       continue;
     rves_.push_back(or_end_job(in.describe() + ": " + point_label(p) + " not restored", [&] {
@@ -330,11 +350,13 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
 
 std::vector<std::string> DemRveMaterial::state_names() const {
   // Which rank group owns a point is not a result (it depends on the rank count): not here.
-  return {"dem_substeps"};
+  return {"dem_substeps", "dem_particle_steps"};
 }
 
-double DemRveMaterial::state(std::size_t point, std::size_t /*k*/) const {
-  return point < substeps_.size() ? substeps_[point] : 0.0;
+double DemRveMaterial::state(std::size_t point, std::size_t k) const {
+  if (point >= substeps_.size())
+    return 0.0;
+  return k == 0 ? substeps_[point] : work_.total(point);
 }
 
 void DemRveMaterial::write_snapshot(std::size_t point, const std::string& prefix) {
@@ -347,7 +369,11 @@ void DemRveMaterial::write_snapshot(std::size_t point, const std::string& prefix
 }
 
 materials::MaterialCost DemRveMaterial::cost() const {
-  return cost_;
+  materials::MaterialCost c = cost_;
+  c.particle_steps_at_max = work_.sum(1);
+  c.particle_steps_low_stress = work_.sum(2);
+  c.particle_steps_quiet = work_.sum(3);
+  return c;
 }
 
 }  // namespace mpm_lig::coupling

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/dem_work.h"
 #include "coupling/rve_layout.h"
 #include "materials/material.h"
 #include "rve/rve.h"
@@ -74,6 +75,7 @@ class DemRveMaterial final : public materials::Material {
 
  private:
   void create_rves();
+  void start_work_ledger();
   void deform_owned(const std::vector<long>& batch_index, const std::vector<Mat3>& dF,
                     std::vector<Mat3>& owned_stress, std::vector<double>& owned_steps);
   void inject_fault_if_asked(std::size_t point, rve::Rve& rve) const;
@@ -92,6 +94,7 @@ class DemRveMaterial final : public materials::Material {
   std::vector<std::unique_ptr<rve::Rve>> rves_;  //!< the owned RVEs, by layout.local_index()
   std::vector<Mat3> stress_;                     //!< every point's last stress (all ranks)
   std::vector<double> substeps_;                 //!< every point's last DEM step count
+  DemWork work_;                                 //!< every point's DEM work (all ranks)
   long updates_ = 0;
   int rank_ = 0;
   materials::MaterialCost cost_;

@@ -22,6 +22,7 @@ const Field kFields[] = {
     {"streaming", 9, [](PointCheckpoint& p) { return p.rve.streaming.data(); }},
     {"rve_particle_steps", 1, [](PointCheckpoint& p) { return &p.rve.particle_steps; }},
     {"last_mean_stress", 1, [](PointCheckpoint& p) { return &p.rve.last_mean_stress; }},
+    {"dem_work", DemWork::kValues, [](PointCheckpoint& p) { return p.work; }},
 };
 
 constexpr const char* kFieldCount = "point_fields";

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/tensor.h"
+#include "coupling/dem_work.h"
 #include "materials/checkpoint_io.h"
 #include "rve/rve.h"
 
@@ -15,9 +16,10 @@ namespace mpm_lig::coupling {
 //! other fields is refused by name. A new field is a member here and a line in the table of
 //! point_checkpoint.cpp.
 struct PointCheckpoint {
-  Mat3 stress = Mat3::Zero();  //!< last homogenised stress, physical frame
-  double substeps = 0.0;       //!< DEM steps of its last update
-  rve::Rve::State rve;         //!< rotation, streaming gradient, counters
+  Mat3 stress = Mat3::Zero();          //!< last homogenised stress, physical frame
+  double substeps = 0.0;               //!< DEM steps of its last update
+  rve::Rve::State rve;                 //!< rotation, streaming gradient, counters
+  double work[DemWork::kValues] = {};  //!< the point's DEM work (DemWork row)
 };
 
 //! Doubles per point when packed (the sum of the field widths).

@@ -102,6 +102,9 @@ materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::
     total.compute_seconds += c.compute_seconds;
     total.communication_seconds += c.communication_seconds;
     total.preparation_seconds += c.preparation_seconds;
+    total.particle_steps_at_max += c.particle_steps_at_max;
+    total.particle_steps_low_stress += c.particle_steps_low_stress;
+    total.particle_steps_quiet += c.particle_steps_quiet;
   }
   return total;
 }
@@ -277,6 +280,11 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
     s["dem_seconds_per_rank"] = per_rank;
     s["load_imbalance"] = sum > 0.0 ? most * static_cast<double>(per_rank.size()) / sum : 1.0;
   }
+  if (cost.particle_steps > 0.0)
+    s["dem_work_shares"] = {
+        {"at_substeps_max", cost.particle_steps_at_max / cost.particle_steps},
+        {"mean_stress_below_10_percent_of_preparation", cost.particle_steps_low_stress / cost.particle_steps},
+        {"strain_per_step_below_1e-5", cost.particle_steps_quiet / cost.particle_steps}};
   s["mpm_steps"] = solver.steps();
   s["gravity_stage_steps"] = totals.gravity_stage_steps;
   s["material_points"] = solver.particles().size();

@@ -1,0 +1,94 @@
+"""Checks of the per-point DEM work (results.h5 dem_particle_steps_m<ID>, summary.json
+dem_work_shares) and of tools/plot_dem_work.py.
+
+usage: check_dem_work.py CASE WORK_DIR [MPM_LIG]   (CASE: real | bad)
+
+real: the quick-start block with 50-disc RVEs for 10 steps at exactly 10 sub-steps: every
+point's field is 40 x 10 x 10 particle-steps and the fields sum to the summary's total; with the
+sub-steps capped at 10 all the work is at substeps.max, with "fixed": 10 none of it is (no cap);
+the block, compressed at 0.3 m/s and confined at the preparation pressure, does no work at low
+mean stress nor quiet. (The classes' closed forms: tests/coupling/test_dem_work.cpp.)
+"""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOL = os.path.join(HERE, "..", "..", "tools", "plot_dem_work.py")
+STEPS, GRAINS, SUBSTEPS = 10, 50, 10
+
+
+def expect(condition, message):
+    if not condition:
+        raise SystemExit(f"FAILED: {message}")
+
+
+def run_case(work, mpm_lig, name, substeps):
+    case = json.load(open(os.path.join(HERE, "..", "..", "cases", "quickstart.json")))
+    case["analysis"]["end"] = {"steps": STEPS}
+    case["output"] = {"every": 5, "history_every": 5}
+    rve = case["materials"][0]["rve"]
+    rve["grains"] = GRAINS
+    rve["substeps"] = substeps
+    path = os.path.join(work, f"{name}.json")
+    json.dump(case, open(path, "w"), indent=1)
+    out = os.path.join(work, name)
+    r = subprocess.run([mpm_lig, path, "--output", out], capture_output=True, text=True)
+    expect(r.returncode == 0, f"{name}: mpm_lig exit {r.returncode}: {r.stderr[-2000:]}")
+    return out
+
+
+def point_work(out):
+    import h5py
+    with h5py.File(os.path.join(out, "results.h5"), "r") as f:
+        last = sorted(g for g in f if g.startswith("step_"))[-1]
+        return f[last]["dem_particle_steps_m1"][()]
+
+
+def real(work, mpm_lig):
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    capped = run_case(work, mpm_lig, "capped", {"inertial_number": 1e-3, "min": SUBSTEPS,
+                                                "max": SUBSTEPS})
+    summary = json.load(open(os.path.join(capped, "summary.json")))
+    work_per_point = point_work(capped)
+    expect(len(work_per_point) == summary["rve_count"] == 32, "one value per point")
+    expect(np.all(work_per_point == GRAINS * SUBSTEPS * STEPS),
+           f"each point {GRAINS * SUBSTEPS * STEPS} particle-steps: {work_per_point}")
+    expect(math.isclose(work_per_point.sum(), summary["dem_particle_steps"]), "sum = total")
+    shares = summary["dem_work_shares"]
+    expect(shares["at_substeps_max"] == 1.0, f"capped: all at substeps.max: {shares}")
+    fixed = run_case(work, mpm_lig, "fixed", {"fixed": SUBSTEPS})
+    shares = json.load(open(os.path.join(fixed, "summary.json")))["dem_work_shares"]
+    expect(shares == {"at_substeps_max": 0.0, "strain_per_step_below_1e-5": 0.0,
+                      "mean_stress_below_10_percent_of_preparation": 0.0},
+           f"fixed sub-steps have no cap; the block is loaded: {shares}")
+    expect(np.array_equal(point_work(fixed), work_per_point), "same steps, same work")
+    r = subprocess.run([sys.executable, TOOL, capped, "-o", os.path.join(work, "map.png")],
+                       capture_output=True, text=True)
+    expect(r.returncode == 0, f"plot_dem_work exit {r.returncode}: {r.stderr}")
+    expect("32 points" in r.stdout and "at substeps max: 100.0 %" in r.stdout, r.stdout)
+    expect(os.path.getsize(os.path.join(work, "map.png")) > 5000, "picture written")
+
+
+def bad(work):
+    sys.path.insert(0, HERE)
+    from synthetic import write_fields
+    shutil.rmtree(work, ignore_errors=True)
+    write_fields(work, [(0, 0.0, {"positions": np.zeros((3, 3)), "dem_substeps_m1": np.ones(3)})])
+    r = subprocess.run([sys.executable, TOOL, work], capture_output=True, text=True)
+    expect(r.returncode == 2 and "dem_particle_steps_m" in r.stderr, f"no field: {r.stderr}")
+    r = subprocess.run([sys.executable, TOOL, os.path.join(work, "nowhere")], capture_output=True,
+                       text=True)
+    expect(r.returncode == 2 and "nowhere" in r.stderr, f"no folder: {r.stderr}")
+
+
+if __name__ == "__main__":
+    case, work = sys.argv[1], os.path.join(sys.argv[2], sys.argv[1])
+    {"real": real, "bad": bad}[case](work, *sys.argv[3:])
+    print(f"{case}: ok")
