@@ -58,7 +58,8 @@ def main():
     finally:
         fields.close()
     total = work.sum()
-    print(f"{len(work)} points, {total:.4g} DEM particle-steps up to step {step} (t = {time:.4g} s)")
+    print(f"{len(work)} points, {total:.4g} DEM particle-steps up to step {step} "
+          f"(t = {time:.4g} s)")
     for f, share in top_shares(work):
         print(f"  the {100 * f:g} % most expensive points: {100 * share:.1f} % of the work")
     summary = read_json(os.path.join(directory, "summary.json"), required=False)

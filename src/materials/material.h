@@ -29,7 +29,7 @@ struct MaterialCost {
   double compute_seconds = 0.0;        //!< this rank's time in its RVEs
   double communication_seconds = 0.0;  //!< this rank's time exchanging stresses (waits included)
   double preparation_seconds = 0.0;    //!< prepare(): packings made or loaded
-  double particle_steps_at_max = 0.0;      //!< of particle_steps: updates at substeps.max
+  double particle_steps_at_max = 0.0;  //!< of particle_steps: updates at substeps.max
   double particle_steps_low_stress = 0.0;  //!< in packings below 10 % of the preparation p
   double particle_steps_quiet = 0.0;       //!< in updates with |dF - 1| < 1e-5
 };

@@ -283,7 +283,8 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
   if (cost.particle_steps > 0.0)
     s["dem_work_shares"] = {
         {"at_substeps_max", cost.particle_steps_at_max / cost.particle_steps},
-        {"mean_stress_below_10_percent_of_preparation", cost.particle_steps_low_stress / cost.particle_steps},
+        {"mean_stress_below_10_percent_of_preparation",
+         cost.particle_steps_low_stress / cost.particle_steps},
         {"strain_per_step_below_1e-5", cost.particle_steps_quiet / cost.particle_steps}};
   s["mpm_steps"] = solver.steps();
   s["gravity_stage_steps"] = totals.gravity_stage_steps;

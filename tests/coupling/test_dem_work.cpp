@@ -16,11 +16,11 @@ Mat3 stretch(double e) {
 TEST(DemWork, BooksEachUpdateToItsPointAndClasses) {
   DemWork w;
   w.start(3, 100.0, 50, 1e5);
-  w.add(0, 50, 2e5, stretch(1e-3));   // at the cap
-  w.add(1, 20, 9e3, stretch(1e-3));   // low mean stress
-  w.add(1, 30, 1e4, stretch(1e-3));   // exactly 10 %: not low
-  w.add(2, 10, 1e5, stretch(9e-6));   // quiet
-  w.add(2, 10, 1e5, stretch(2e-5));   // not quiet
+  w.add(0, 50, 2e5, stretch(1e-3));  // at the cap
+  w.add(1, 20, 9e3, stretch(1e-3));  // low mean stress
+  w.add(1, 30, 1e4, stretch(1e-3));  // exactly 10 %: not low
+  w.add(2, 10, 1e5, stretch(9e-6));  // quiet
+  w.add(2, 10, 1e5, stretch(2e-5));  // not quiet
   EXPECT_EQ(w.total(0), 5000.0);
   EXPECT_EQ(w.total(1), 5000.0);
   EXPECT_EQ(w.total(2), 2000.0);

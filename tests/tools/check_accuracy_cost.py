@@ -76,9 +76,10 @@ def synthetic(work):
     q = res["quantities"]["plateau q/q_s"]
     close(q["reference_value"], ref, "reference value")
     close(q["noise_floor"], 0.1 / ref, "noise floor: the seeds' standard deviation")
-    close(v["inertial_number=0.001, grains=100"]["errors"]["plateau q/q_s"], 0.09 / ref, "error I=1e-3")
-    close(v["inertial_number=0.01, grains=100"]["errors"]["plateau q/q_s"], 0.99 / ref, "error I=1e-2")
-    close(v["inertial_number=0.0001, grains=200"]["errors"]["plateau q/q_s"], 0.05 / ref, "error g=200")
+    for label, difference in (("inertial_number=0.001, grains=100", 0.09),
+                              ("inertial_number=0.01, grains=100", 0.99),
+                              ("inertial_number=0.0001, grains=200", 0.05)):
+        close(v[label]["errors"]["plateau q/q_s"], difference / ref, f"error of {label}")
     close(v["inertial_number=0.0001, grains=100, seed=2"]["errors"]["peak q/q_s"], 0.0, "seed 2")
     names = {r["label"]: r["name"] for r in res["variants"]}
     front = [names["inertial_number=0.01, grains=100"], names["inertial_number=0.001, grains=100"],
@@ -128,7 +129,8 @@ def measures(work):
     ref = reference_value(CURVE, seeds)
     close(float(np.max(np.abs(ref[1] - 2 * x))), 0.0, "mean curve")
     rms_x = math.sqrt(np.mean(x ** 2))
-    close(error(CURVE, (x[::-1], 2.5 * x[::-1]), ref), 0.5 * rms_x / 2.0, "curve error (x unsorted)")
+    close(error(CURVE, (x[::-1], 2.5 * x[::-1]), ref), 0.5 * rms_x / 2.0,
+          "curve error (x unsorted)")
     close(noise_floor(CURVE, seeds, ref), math.sqrt(2 * rms_x ** 2 / 2) / 2.0, "curve floor")
     series = [np.array([10.0, 8.0, 6.0]), np.array([12.0, 10.0, 7.0, 1.0])]  # common: 3 cycles
     sref = reference_value(SERIES, series)

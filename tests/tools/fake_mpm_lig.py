@@ -31,7 +31,8 @@ def main():
     rve = case["rve"]
     rate = 8e5 if rve["grains"] == 200 else 1e6
     inertial = rve["substeps"]["inertial_number"]
-    ratio = 10 * (1 + 10 * inertial) + 0.1 * (rve["seed"] - 2) + (0.05 if rve["grains"] == 200 else 0)
+    ratio = (10 * (1 + 10 * inertial) + 0.1 * (rve["seed"] - 2)
+             + (0.05 if rve["grains"] == 200 else 0))
     surcharge = abs(case["boundary_conditions"][0]["traction"][-1])
     width = case["rigid_bodies"][0]["width"][0]
     os.makedirs(out, exist_ok=True)

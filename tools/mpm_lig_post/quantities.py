@@ -48,7 +48,7 @@ class Run:
 
 # ---- element tests -------------------------------------------------------------------------
 
-def _principal(h, dimension):
+def principal_series(h, dimension):
     """(s1, s3, e1, e_v): compression-positive principal stresses, axial and volumetric strain."""
     names = ["xx", "yy", "zz", "xy", "xz", "yz"]
     missing = [f"s_{n}" for n in names if f"s_{n}" not in h]
@@ -72,7 +72,7 @@ def _dimension(run):
 
 
 def _mobilised(run):
-    s1, s3, e1, ev = _principal(run.history, _dimension(run))
+    s1, s3, e1, ev = principal_series(run.history, _dimension(run))
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where(s1 + s3 > 0, (s1 - s3) / (s1 + s3), 0.0)
     return np.degrees(np.arcsin(np.clip(ratio, -1, 1))), e1, ev
@@ -107,7 +107,7 @@ def max_dilatancy(window=0.02):
 
 
 def deviator_curve(run):
-    s1, s3, e1, _ = _principal(run.history, _dimension(run))
+    s1, s3, e1, _ = principal_series(run.history, _dimension(run))
     return e1, s1 - s3
 
 

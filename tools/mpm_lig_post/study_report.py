@@ -121,7 +121,8 @@ def print_table(result, measures):
             continue
         for n in names:
             v = r["values"][n]
-            line += f"{(_fmt(v) if isinstance(v, float) else ('series' if v is not None else '-')):>18s} "
+            shown = _fmt(v) if isinstance(v, float) else ("curve" if v is not None else "-")
+            line += f"{shown:>18s} "
             line += f"{_pct(r['errors'][n]):>8s} "
         line += (f"{r['wall_seconds']:8.1f} {r['core_seconds']:8.1f} {r['particle_steps']:9.3g} "
                  f"{_pct(r.get('prediction_error')):>7s}")
