@@ -31,7 +31,7 @@ from mpm_lig_post import cli
 from mpm_lig_post.errors import InputError
 from mpm_lig_post.quantities import quantities
 from mpm_lig_post.study_spec import Study, write_case
-from mpm_lig_post.study_report import collect, write_report
+from mpm_lig_post.study_report import COST_AXES, collect, write_report
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -81,9 +81,15 @@ def run_variant(directory, mpm_lig, ranks):
         command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + command
     start = time.monotonic()
     with open(os.path.join(directory, "log.txt"), "w") as log:
-        code = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT).returncode
+        child = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT)
+        # The CPU time of the run and of every process it waited for (the ranks under
+        # mpirun): on a shared machine the honest core-seconds, where wall time is not.
+        _, status, usage = os.wait4(child.pid, 0)
+        child.returncode = code = os.waitstatus_to_exitcode(status)
     with open(os.path.join(directory, "wall_seconds"), "w") as f:
         f.write(f"{time.monotonic() - start:.6g}\n")
+    with open(os.path.join(directory, "cpu_seconds"), "w") as f:
+        f.write(f"{usage.ru_utime + usage.ru_stime:.6g}\n")
     with open(os.path.join(directory, "exit_code"), "w") as f:
         f.write(f"{code}\n")
     return code
@@ -119,6 +125,10 @@ def main():
     p.add_argument("--mpm-lig", help="the mpm_lig executable (default build/mpm_lig, PATH)")
     p.add_argument("--report-only", action="store_true",
                    help="run nothing: report the variants already finished in OUTPUT")
+    p.add_argument("--cost", choices=COST_AXES, default="core-seconds",
+                   help="what the picture and the recommendations count as cost: wall x ranks "
+                        "(default), the runs' CPU time (robust on a shared machine) or DEM "
+                        "particle-steps (deterministic)")
     p.add_argument("--dpi", type=int, default=150)
     a = p.parse_args()
     if a.np < 1 or a.jobs < 1:
@@ -140,7 +150,7 @@ def main():
         run_all(study, variants, output, mpm_lig, a.np, a.jobs)
     elif not os.path.isdir(os.path.join(output, "variants")):
         raise InputError(f"{output}: no variants to report (nothing has run there)")
-    results = collect(study, variants, measures, output, a.np)
+    results = collect(study, variants, measures, output, a.np, a.cost.replace("-", "_"))
     write_report(study, results, measures, output, a.dpi)
     failed = [r for r in results["variants"] if r["status"] != "done"]
     if failed:

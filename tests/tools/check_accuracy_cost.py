@@ -98,6 +98,12 @@ def synthetic(work):
     expect(len(csv_rows) == 7 and "plateau q/q_s error" in csv_rows[0], "CSV table")
     expect(os.path.getsize(os.path.join(out, "accuracy_cost.png")) > 10000, "picture")
     expect("Pareto front" in r.stdout and "worst prediction error -20.0 %" in r.stdout, "table")
+    expect(all(r["cpu_seconds"] > 0 for r in res["variants"]), "CPU time of every run")
+    # Cost counted in particle-steps (deterministic): the same front, the same order.
+    r = run(study, "--output", out, "--report-only", "--cost", "particle-steps")
+    res = json.load(open(os.path.join(out, "accuracy_cost.json")))
+    expect(r.returncode == 0 and res["cost_axis"] == "particle_steps", "--cost particle-steps")
+    expect(res["quantities"]["plateau q/q_s"]["pareto_front"] == front, "front over particle-steps")
 
 
 def resume(work):

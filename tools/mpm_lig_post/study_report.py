@@ -14,11 +14,12 @@ from .tradeoff import (cheapest_within, error, noise_floor, pareto_front, predic
                        reference_value)
 
 TARGETS = (0.01, 0.05, 0.15)
+COST_AXES = ("core-seconds", "cpu-seconds", "particle-steps")
 
 
-def _cost(summary, ranks):
-    """wall s, core-s, stepping core-s (without packing preparation and output), particle-steps,
-    DEM updates (RVEs x steps)."""
+def _cost(summary, ranks, cpu):
+    """wall s, core-s (wall x ranks), CPU s (None: not measured), the stepping parts of both
+    (without packing preparation and output), particle-steps, DEM updates (RVEs x steps)."""
     wall = float(summary["wall_seconds"])
     ranks = int(summary.get("ranks", ranks))
     split = summary.get("time_split", {})
@@ -28,7 +29,9 @@ def _cost(summary, ranks):
     return {"wall_seconds": wall, "ranks": ranks, "core_seconds": wall * ranks,
             "stepping_core_seconds": stepping * ranks,
             "particle_steps": float(summary.get("dem_particle_steps", 0.0)),
-            "rve_steps": float(rves * steps)}
+            "rve_steps": float(rves * steps),
+            "cpu_seconds": cpu,
+            "stepping_cpu_seconds": None if cpu is None else cpu * stepping / wall}
 
 
 def _measure(run, measures):
@@ -41,7 +44,15 @@ def _measure(run, measures):
     return values
 
 
-def collect(study, variants, measures, output, ranks):
+def _read_number(path):
+    try:
+        with open(path) as f:
+            return float(f.read())
+    except (OSError, ValueError):
+        return None
+
+
+def collect(study, variants, measures, output, ranks, axis="core_seconds"):
     """Per variant: status, settings, cost and quantity values; then errors against the
     reference's seed mean, noise floors, Pareto fronts and the cost model."""
     rows = []
@@ -55,7 +66,7 @@ def collect(study, variants, measures, output, ranks):
             os.path.join(d, "exit_code")) else None
         if summary is not None and code == "0":
             row["status"] = "done"
-            row.update(_cost(summary, ranks))
+            row.update(_cost(summary, ranks, _read_number(os.path.join(d, "cpu_seconds"))))
             case = read_json(os.path.join(d, "case.json"))
             row["values"] = _measure(Run(os.path.join(d, "run"), case), measures)
         elif code is not None:
@@ -65,7 +76,11 @@ def collect(study, variants, measures, output, ranks):
     refs = [r for r in done if r["reference"]]
     if not refs:
         raise InputError(f"{output}: the reference variant has not finished: no errors to measure")
+    if any(r[axis] is None for r in done):
+        raise InputError(f"{output}: cost '{axis}' not measured for every variant (runs made "
+                         "before CPU time was recorded): choose another --cost")
     result = {"title": study.title, "base": study.base_path, "knobs": study.knobs,
+              "cost_axis": axis,
               "reference": study.reference, "seeds": study.seeds, "variants": rows,
               "quantities": {}}
     for q in measures:
@@ -74,7 +89,7 @@ def collect(study, variants, measures, output, ranks):
         floor = noise_floor(q.kind, seed_values, ref)
         for r in done:
             r.setdefault("errors", {})[q.name] = error(q.kind, r["values"][q.name], ref)
-        points = [(r["core_seconds"], r["errors"][q.name]) for r in done
+        points = [(r[axis], r["errors"][q.name]) for r in done
                   if r["errors"][q.name] is not None]
         names = [r["name"] for r in done if r["errors"][q.name] is not None]
         front = [names[i] for i in pareto_front(points)]
@@ -86,15 +101,17 @@ def collect(study, variants, measures, output, ranks):
             "kind": q.kind, "unit": q.unit, "noise_floor": floor,
             "reference_value": ref if q.kind == SCALAR or ref is None else "mean of seeds",
             "pareto_front": front, "recommended": recommended}
+    timed = "stepping_cpu_seconds" if axis == "cpu_seconds" else "stepping_core_seconds"
     if len(done) >= 2 and all(r["particle_steps"] > 0 for r in done):
         predicted, errs, rate = predict_costs([r["particle_steps"] for r in done],
-                                              [r["stepping_core_seconds"] for r in done])
+                                              [r[timed] for r in done])
         for r, p, e in zip(done, predicted, errs):
             r["predicted_stepping_core_seconds"], r["prediction_error"] = p, e
         worst = max(done, key=lambda r: abs(r["prediction_error"]))
         result["cost_model"] = {
             "rule": "stepping core-s = particle-steps / rate; rate = median particle-steps per "
                     "stepping core-second of the other variants (leave one out)",
+            "timed_by": timed,
             "rate_particle_steps_per_core_second": rate,
             "worst_prediction_error": worst["prediction_error"], "worst_variant": worst["name"]}
     return result
@@ -112,7 +129,7 @@ def print_table(result, measures):
     names = [q.name for q in measures]
     head = f"{'variant':6s} {'settings':44s} " + " ".join(f"{n[:18]:>18s} {'err':>8s}"
                                                           for n in names)
-    head += f" {'wall s':>8s} {'core-s':>8s} {'p-steps':>9s} {'model':>7s}"
+    head += f" {'wall s':>8s} {'core-s':>8s} {'CPU s':>8s} {'p-steps':>9s} {'model':>7s}"
     print(head)
     for r in result["variants"]:
         line = f"{r['name']:6s} {r['label'][:44]:44s} "
@@ -124,7 +141,9 @@ def print_table(result, measures):
             shown = _fmt(v) if isinstance(v, float) else ("curve" if v is not None else "-")
             line += f"{shown:>18s} "
             line += f"{_pct(r['errors'][n]):>8s} "
-        line += (f"{r['wall_seconds']:8.1f} {r['core_seconds']:8.1f} {r['particle_steps']:9.3g} "
+        cpu = "-" if r["cpu_seconds"] is None else f"{r['cpu_seconds']:.1f}"
+        line += (f"{r['wall_seconds']:8.1f} {r['core_seconds']:8.1f} {cpu:>8s} "
+                 f"{r['particle_steps']:9.3g} "
                  f"{_pct(r.get('prediction_error')):>7s}")
         print(line)
     for n, q in result["quantities"].items():
@@ -153,7 +172,8 @@ def _jsonable(x):
 
 
 def write_csv(result, measures, path):
-    cost = ["wall_seconds", "core_seconds", "stepping_core_seconds", "particle_steps",
+    cost = ["wall_seconds", "core_seconds", "stepping_core_seconds", "cpu_seconds",
+            "stepping_cpu_seconds", "particle_steps",
             "predicted_stepping_core_seconds", "prediction_error"]
     knobs = result["knobs"]
     with open(path, "w", newline="") as f:
@@ -188,7 +208,8 @@ def draw(result, measures, path, dpi):
     fig, axes = figures.subplots(rows_, cols, figsize=(6.2 * cols, 4.6 * rows_), squeeze=False)
     for ax, q in zip(axes.flat, measures):
         info = result["quantities"][q.name]
-        pts = [(r["core_seconds"], r["errors"][q.name], r) for r in done
+        axis = result["cost_axis"]
+        pts = [(r[axis], r["errors"][q.name], r) for r in done
                if r["errors"][q.name] is not None]
         if not pts:
             ax.set_title(f"{q.name}: no value")
@@ -208,7 +229,9 @@ def draw(result, measures, path, dpi):
                        label=f"noise floor (seeds) {100 * info['noise_floor']:.2g} %")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("cost [core-seconds]")
+        ax.set_xlabel({"core_seconds": "cost [core-seconds: wall x ranks]",
+                       "cpu_seconds": "cost [CPU core-seconds]",
+                       "particle_steps": "cost [DEM particle-steps]"}[axis])
         ax.set_ylabel(f"error of {q.name} [%] (0 drawn at {100 * floor_y:g})")
         ax.set_title(q.name)
         ax.legend(loc="best", frameon=False, fontsize=8)
