@@ -37,6 +37,8 @@ PointCheckpoint sample(double seed) {
   p.substeps = seed * 7;
   p.rve.particle_steps = seed * 1e6;
   p.rve.last_mean_stress = -seed * 1e5;
+  for (int k = 0; k < DemWork::kValues; ++k)
+    p.work[k] = seed * 1e3 + k;
   return p;
 }
 
@@ -68,6 +70,8 @@ TEST(PointCheckpoint, NamedArraysRoundTripEveryField) {
     EXPECT_EQ(got.rve.streaming, want.rve.streaming);
     EXPECT_EQ(got.rve.particle_steps, want.rve.particle_steps);
     EXPECT_EQ(got.rve.last_mean_stress, want.rve.last_mean_stress);
+    for (int k = 0; k < DemWork::kValues; ++k)
+      EXPECT_EQ(got.work[k], want.work[k]);
   }
 }
 
@@ -83,7 +87,7 @@ TEST(PointCheckpoint, OtherLayoutsAreRefusedByName) {
       << refusal(missing, 1);
 
   Store more = good;
-  more.arrays["point_fields"] = {7.0};
+  more.arrays["point_fields"] = {99.0};  // more fields than this version knows
   EXPECT_NE(refusal(more, 1).find("fields do not match"), std::string::npos) << refusal(more, 1);
 
   Store old_rows;  // the unnamed rows of earlier versions
