@@ -97,6 +97,8 @@ def synthetic(work):
     csv_rows = open(os.path.join(out, "accuracy_cost.csv")).read().splitlines()
     expect(len(csv_rows) == 7 and "plateau q/q_s error" in csv_rows[0], "CSV table")
     expect(os.path.getsize(os.path.join(out, "accuracy_cost.png")) > 10000, "picture")
+    md = open(os.path.join(out, "accuracy_cost.md")).read()
+    expect(md.count("\n| v0") == 6 and "| plateau q/q_s | 0.999 % |" in md, "Markdown table")
     expect("Pareto front" in r.stdout and "worst prediction error -20.0 %" in r.stdout, "table")
     expect(all(r["cpu_seconds"] > 0 for r in res["variants"]), "CPU time of every run")
     # Cost counted in particle-steps (deterministic): the same front, the same order.

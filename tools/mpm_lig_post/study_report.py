@@ -1,5 +1,5 @@
 """Collect a study's finished variants (summary.json, history.csv) into errors and costs, and
-write them: the printed table, accuracy_cost.json, accuracy_cost.csv and accuracy_cost.png."""
+write them: the printed table, accuracy_cost.json, .csv, .md (Markdown table) and .png."""
 import csv
 import json
 import os
@@ -242,10 +242,41 @@ def draw(result, measures, path, dpi):
     figures.save(fig, path, dpi)
 
 
+def write_markdown(result, measures, path):
+    """The table as Markdown (for docs): settings, each quantity with its error, costs."""
+    names = [q.name for q in measures]
+    lines = ["| variant | settings | " + " | ".join(f"{n} (error)" for n in names)
+             + " | particle-steps | core-s | CPU s |",
+             "|---" * (len(names) + 5) + "|"]
+    for r in result["variants"]:
+        if r["status"] != "done":
+            lines.append(f"| {r['name']} | {r['label']} | " + " | ".join("" for _ in names)
+                         + f" | {r['status']} | | |")
+            continue
+        cells = []
+        for n in names:
+            v, e = r["values"][n], r["errors"][n]
+            shown = _fmt(v) if isinstance(v, float) else ("curve" if v is not None else "-")
+            cells.append(f"{shown} ({_pct(e)})")
+        cpu = "-" if r["cpu_seconds"] is None else f"{r['cpu_seconds']:.0f}"
+        lines.append(f"| {r['name']}{' (ref)' if r['reference'] else ''} | {r['label']} | "
+                     + " | ".join(cells)
+                     + f" | {r['particle_steps']:.3g} | {r['core_seconds']:.0f} | {cpu} |")
+    lines.append("")
+    lines.append("| quantity | noise floor | Pareto front | cheapest within 1 % / 5 % / 15 % |")
+    lines.append("|---|---|---|---|")
+    for n, q in result["quantities"].items():
+        rec = " / ".join(v or "none" for v in q["recommended"].values())
+        lines.append(f"| {n} | {_pct(q['noise_floor'])} | {' '.join(q['pareto_front'])} | {rec} |")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 def write_report(study, result, measures, output, dpi):
     print_table(result, measures)
     with open(os.path.join(output, "accuracy_cost.json"), "w") as f:
         json.dump(_jsonable(result), f, indent=1)
     write_csv(result, measures, os.path.join(output, "accuracy_cost.csv"))
+    write_markdown(result, measures, os.path.join(output, "accuracy_cost.md"))
     draw(result, measures, os.path.join(output, "accuracy_cost.png"), dpi)
-    print(f"wrote {output}/accuracy_cost.json, accuracy_cost.csv")
+    print(f"wrote {output}/accuracy_cost.json, accuracy_cost.csv, accuracy_cost.md")
