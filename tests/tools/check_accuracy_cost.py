@@ -52,7 +52,8 @@ def fake_study(work, **change):
            "rigid_bodies": [{"width": [0.2]}]})
     study = {"base": "base.json", "mode": "one_at_a_time",
              "sweep": [{"path": "rve.substeps.inertial_number", "values": [1e-4, 1e-3, 1e-2]},
-                       {"path": "rve.grains", "values": [100, 200]}],
+                       {"path": "rve.grains", "values": [100, 200],
+                        "also": {"rigid_bodies[0].width": [[0.2], [0.4]]}}],
              "reference": {"rve.substeps.inertial_number": 1e-4, "rve.grains": 100},
              "seeds": {"path": "rve.seed", "values": [1, 2, 3]}, "quantities": "footing"}
     study.update(change)
@@ -101,6 +102,10 @@ def synthetic(work):
     expect(md.count("\n| v0") == 6 and "| plateau q/q_s | 0.999 % |" in md, "Markdown table")
     expect("Pareto front" in r.stdout and "worst prediction error -20.0 %" in r.stdout, "table")
     expect(all(r["cpu_seconds"] > 0 for r in res["variants"]), "CPU time of every run")
+    for label, width in (("inertial_number=0.0001, grains=200", [0.4]),
+                         ("inertial_number=0.01, grains=100", [0.2])):
+        case = json.load(open(os.path.join(out, "variants", v[label]["folder"], "case.json")))
+        expect(case["rigid_bodies"][0]["width"] == width, f"{label}: 'also' width {case}")
     # Cost counted in particle-steps (deterministic): the same front, the same order.
     r = run(study, "--output", out, "--report-only", "--cost", "particle-steps")
     res = json.load(open(os.path.join(out, "accuracy_cost.json")))

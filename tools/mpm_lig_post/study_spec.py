@@ -4,13 +4,16 @@ values, the reference settings and the seeds that give the reference's scatter.
     {"base": "../cases/element_biaxial_2d_100kPa.json",    relative to the study file
      "set": {"analysis.axial_strain": 0.05},              optional: on every variant
      "sweep": [{"path": "rve.substeps.inertial_number", "values": [1e-4, 1e-3, 1e-2]},
-               {"path": "rve.grains", "values": [100, 400]}],
+               {"path": "rve.grains", "values": [100, 400]},
+               {"path": "mesh.cells", "values": [[12, 14], [24, 28]],
+                "also": {"boundary_conditions[3].points.min": [[0.1, 0.57], [0.1, 0.585]]}}],
      "mode": "one_at_a_time",                             or "grid" (the default)
      "reference": {"rve.substeps.inertial_number": 1e-4, "rve.grains": 400},
      "seeds": {"path": "rve.seed", "values": [1, 2, 3], "apply_to": "reference"},
      "quantities": "element"}                             element | cyclic | footing | list
 
-A path is dot-separated keys with [i] for list entries: "materials[0].rve.grains".
+A path is dot-separated keys with [i] for list entries: "materials[0].rve.grains". "also" moves
+other paths with a knob, one value per knob value (e.g. a surface box that depends on the mesh).
 """
 import copy
 import hashlib
@@ -128,6 +131,7 @@ class Study:
         self.title = spec.get("title", os.path.splitext(os.path.basename(path))[0])
         for p, v in spec.get("set", {}).items():
             set_path(self.base, p, v, create=True)
+        self.also = {}
         self.knobs, self.values = self._sweep(spec, path)
         self.mode = spec.get("mode", "grid")
         if self.mode not in ("grid", "one_at_a_time"):
@@ -152,7 +156,20 @@ class Study:
             get_path(self.base, p)
             knobs.append(p)
             values[p] = v
+            self.also[p] = self._also(knob, v, where)
         return knobs, values
+
+    def _also(self, knob, values, where):
+        """Paths that move with a knob, one value per knob value (a mesh-dependent box)."""
+        also = knob.get("also", {})
+        if not isinstance(also, dict):
+            raise InputError(f"{where}.also: expected an object path -> values")
+        for q, v in also.items():
+            if not isinstance(v, list) or len(v) != len(values):
+                raise InputError(f"{where}.also.{q}: expected {len(values)} values, one per "
+                                 "value of the knob")
+            get_path(self.base, q)
+        return also
 
     def _reference(self, spec, path):
         ref = spec.get("reference")
@@ -220,6 +237,8 @@ class Study:
         case = copy.deepcopy(self.base)
         for p, value in variant.settings.items():
             set_path(case, p, value)
+            for q, linked in self.also.get(p, {}).items():
+                set_path(case, q, linked[self.values[p].index(value)])
         if variant.seed is not None:
             set_path(case, self.seed_path, variant.seed)
         return case
