@@ -158,12 +158,18 @@ def bad_path(work):
     expect(r.returncode == 2, f"exit code {r.returncode}")
     expect("rve.substeps.inertia" in r.stderr, "unknown path not named")
     expect(not os.path.exists(out), "output created on bad input")
+    study, out = fake_study(work, sweep=[{"path": "rve.grains", "values": [100, 200],
+                                          "also": {"rigid_bodies[0].width": [[0.2]]}}],
+                            reference={"rve.grains": 100})
+    r = run(study, "--output", out, "--mpm-lig", FAKE)
+    expect(r.returncode == 2 and "also.rigid_bodies[0].width" in r.stderr, "'also' length")
 
 
 def bad_value(work):
     study, out = fake_study(work)
     s = json.load(open(study))
     s["sweep"][1]["values"].append(-5)
+    s["sweep"][1]["also"]["rigid_bodies[0].width"].append([0.2])
     write(study, s)
     r = run(study, "--output", out, "--mpm-lig", FAKE)
     expect(r.returncode == 2, f"exit code {r.returncode}")
