@@ -64,7 +64,7 @@ std::vector<std::string> history_columns() {
   for (const char* c : kVoigtNames)
     columns.push_back(std::string("s_") + c);
   for (const char* c : {"p", "q", "e_vol", "gamma_xy", "void_ratio", "coordination_number",
-                        "kinetic_ratio", "substeps"})
+                        "kinetic_ratio", "substeps", "flow_ratio", "step_travel", "max_overlap"})
     columns.push_back(c);
   return columns;
 }
@@ -84,6 +84,9 @@ std::vector<double> history_row(int increment, double time, const Mat3& F,
   row.push_back(o.coordination_number);
   row.push_back(o.kinetic_ratio());
   row.push_back(substeps);
+  row.push_back(o.flow_ratio());
+  row.push_back(o.step_travel);
+  row.push_back(o.max_overlap_ratio);
   return row;
 }
 
@@ -157,8 +160,17 @@ std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohma
                             {"friction_used", c.friction_used},
                             {"dem_steps", c.steps},
                             {"target_void_ratio_reached", c.void_ratio_reached}};
-  if (rve_.preparation.target_void_ratio)
+  if (rve_.preparation.target_void_ratio) {
     summary["preparation"]["target_void_ratio"] = *rve_.preparation.target_void_ratio;
+    summary["preparation"]["void_ratio_error"] = c.void_ratio_error;
+    summary["preparation"]["void_ratio_tolerance"] = rve_.preparation.void_ratio_tolerance;
+  }
+  int rank = 0;
+  MPI_Comm_rank(context.comm, &rank);
+  // A missed target ends the run, with the miss in the summary for the record.
+  if (!c.void_ratio_reached && rank == 0)
+    io::write_json((std::filesystem::path(context.output_dir) / "summary.json").string(), summary);
+  rve::require_void_ratio(*rve, c);
   if (test_.save_restart)
     rve->write_restart((std::filesystem::path(context.output_dir) / "prepared.restart").string());
   return rve;

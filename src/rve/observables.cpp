@@ -1,13 +1,23 @@
 #include "rve/observables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace mpm_lig::rve {
 
 double Observables::kinetic_ratio() const {
+  if (kinetic_energy == 0.0)
+    return 0.0;
   return elastic_energy > 0.0 ? kinetic_energy / elastic_energy
                               : std::numeric_limits<double>::infinity();
+}
+
+double Observables::flow_ratio() const {
+  if (kinetic_energy == 0.0)
+    return 0.0;
+  return flow_energy > 0.0 ? kinetic_energy / flow_energy
+                           : std::numeric_limits<double>::infinity();
 }
 
 double mean_stress(const Mat3& sigma, int dimension) {
@@ -51,6 +61,7 @@ void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact
   out.grains = static_cast<long>(grains.x.size());
   out.contacts = 0;
   out.elastic_energy = 0.0;
+  out.max_overlap_ratio = 0.0;
   std::vector<char> loaded(grains.x.size(), 0);
   for (const auto& c : contacts) {
     const double distance = c.branch.norm();
@@ -64,6 +75,8 @@ void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact
     if (overlap > 0.0) {
       out.elastic_energy += 0.4 * fn * overlap;
       out.mean_overlap_strain += overlap / distance;
+      const double smaller = std::min(grains.radius[c.id_i - 1], grains.radius[c.id_j - 1]);
+      out.max_overlap_ratio = std::max(out.max_overlap_ratio, overlap / smaller);
     }
   }
   if (out.contacts > 0)
@@ -81,7 +94,15 @@ void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact
   }
   const Vec3 drift = mass > 0.0 ? Vec3(momentum / mass) : Vec3::Zero();
   out.kinetic_energy = 0.0;
+  out.max_speed_ratio = 0.0;
+  out.flow_energy = 0.0;
+  const double rate = streaming.norm();
   for (std::size_t i = 0; i < grains.x.size(); ++i) {
+    // Every grain, rattlers too: a grain crossing a large part of its radius in one step is
+    // numerical whether or not it touches another.
+    const double speed = (fluctuation[i] - drift).norm() + grains.omega[i].norm() * grains.radius[i];
+    out.max_speed_ratio = std::max(out.max_speed_ratio, speed / grains.radius[i]);
+    out.flow_energy += 0.5 * grains.mass[i] * std::pow(2.0 * rate * grains.radius[i], 2);
     // Rattlers (no contact) fly freely and undamped without touching the stress: leave
     // them out, or a packing at rest never looks at rest.
     if (!loaded[i])

@@ -16,10 +16,25 @@ struct Observables {
   double elastic_energy = 0.0;       //!< normal Hertz energy Σ 2/5 F_n δ [J]
   long contacts = 0;
   double mean_overlap_strain = 0.0;  //!< mean overlap / branch length over contacts
+  double max_overlap_ratio = 0.0;    //!< largest overlap / radius of the smaller grain
+  double max_speed_ratio = 0.0;      //!< largest fluctuation speed / own radius [1/s]
+  double step_travel = 0.0;          //!< max_speed_ratio × DEM time step: radii per step
+  //! Kinetic energy of grains moving at the imposed strain rate over one grain diameter,
+  //! ½ Σ m (|L| d)²: the agitation a sheared packing has without any contact force [J].
+  double flow_energy = 0.0;
   long grains = 0;
-  //! kinetic / elastic energy (infinite without contacts): ≪ 1 means quasi-static.
+  //! kinetic / elastic energy (0 at rest, infinite moving without contacts): ≪ 1 means
+  //! quasi-static.
   double kinetic_ratio() const;
+  //! kinetic / flow energy (0 at rest, infinite moving without an imposed strain rate).
+  double flow_ratio() const;
 };
+
+//! Health limits that do not depend on the stress level (a liquefied packing stays far from
+//! them; a numerical blow-up crosses them): radii a grain may travel in one DEM step, and the
+//! overlap of two grains against the smaller radius.
+inline constexpr double kMaxStepTravel = 0.05;
+inline constexpr double kMaxOverlapRatio = 0.5;
 
 //! Mean stress p (compression positive) of a tension-positive σ: in-plane mean in 2D.
 double mean_stress(const Mat3& sigma, int dimension);

@@ -103,21 +103,40 @@ Observables Rve::observe() {
   add_grain_measures(grains, contacts, streaming_, engine_->box().lo, o);
   const double solid = solid_measure(grains.radius, spec_.dimension);
   o.void_ratio = cell_measure(box_matrix(), spec_.dimension) / solid - 1.0;
+  o.step_travel = o.max_speed_ratio * spec_.time_step;
   return o;
 }
 
-void Rve::check_health(const Observables& now) const {
+void Rve::check_blow_up(const Observables& now) const {
   std::ostringstream problem;
   if (now.grains != spec_.grains)
     problem << "lost " << spec_.grains - now.grains << " of " << spec_.grains << " grains";
   else if (!now.stress.allFinite() || !std::isfinite(now.kinetic_energy))
     problem << "stress or velocities are not finite (NaN)";
-  else if (now.kinetic_ratio() > spec_.max_kinetic_ratio)
-    problem << "runaway kinetic energy: kinetic/elastic = " << now.kinetic_ratio() << " > "
-            << spec_.path << ".max_kinetic_ratio = " << spec_.max_kinetic_ratio
-            << " (time step too large or deformation too fast?)";
+  else if (now.step_travel > kMaxStepTravel)
+    problem << "a grain moves " << now.step_travel << " of its radius per DEM step (limit "
+            << kMaxStepTravel << "): numerical blow-up; time step too large?";
+  else if (now.max_overlap_ratio > kMaxOverlapRatio)
+    problem << "two grains overlap by " << now.max_overlap_ratio
+            << " of the smaller radius (limit " << kMaxOverlapRatio
+            << "): numerical blow-up or a pressure far beyond the contact law's range";
   if (!problem.str().empty())
     throw std::runtime_error(label_ + ": " + problem.str());
+}
+
+void Rve::check_health(const Observables& now) const {
+  check_blow_up(now);
+  // Both ratios: a liquefied packing has lost its elastic energy but its grains still move at
+  // the pace of the imposed flow; only a blow-up outruns both.
+  if (now.kinetic_ratio() > spec_.max_kinetic_ratio && now.flow_ratio() > spec_.max_flow_ratio) {
+    std::ostringstream problem;
+    problem << label_ << ": runaway kinetic energy: kinetic/elastic = " << now.kinetic_ratio()
+            << " > " << spec_.path << ".max_kinetic_ratio = " << spec_.max_kinetic_ratio
+            << " and kinetic/flow = " << now.flow_ratio() << " > " << spec_.path
+            << ".max_flow_ratio = " << spec_.max_flow_ratio
+            << " (time step too large or deformation too fast?)";
+    throw std::runtime_error(problem.str());
+  }
 }
 
 void Rve::set_friction(double friction) {

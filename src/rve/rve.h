@@ -45,7 +45,11 @@ class Rve {
   Observables observe();
   //! The stress only (cheap: no grain gathering), physical frame, tension positive.
   Mat3 stress();
-  //! Throws std::runtime_error naming the RVE on lost grains, NaN or runaway kinetic energy.
+  //! Throws std::runtime_error naming the RVE on a numerical blow-up: lost grains, NaN, a
+  //! grain crossing kMaxStepTravel radii in one DEM step, or an overlap beyond kMaxOverlapRatio.
+  void check_blow_up(const Observables& now) const;
+  //! check_blow_up, and runaway kinetic energy: above max_kinetic_ratio × the elastic energy
+  //! and max_flow_ratio × the flow energy (a liquefied packing passes).
   void check_health(const Observables& now) const;
 
   //! Change the sliding friction (compaction towards a target void ratio).

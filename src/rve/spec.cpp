@@ -93,6 +93,7 @@ PreparationSpec parse_preparation(const CaseNode& node, int dimension) {
   if (node.has("target_void_ratio"))
     p.target_void_ratio = node.positive("target_void_ratio");
   p.tolerance = node.in_range_or("tolerance", 1e-4, 0.02, 0.005);
+  p.void_ratio_tolerance = node.in_range_or("void_ratio_tolerance", 1e-4, 0.1, 0.005);
   const double dense = dimension == 2 ? 0.8 : 0.6;
   p.initial_solid_fraction =
       node.in_range_or("initial_solid_fraction", 0.05, dimension == 2 ? 0.5 : 0.35, 0.6 * dense);
@@ -187,6 +188,9 @@ RveSpec parse_rve_spec(const CaseNode& node) {
       "affine_motion", {"streaming_velocity", "remap_positions"}, "streaming_velocity");
   s.stream_velocity = affine == "streaming_velocity";
   s.max_kinetic_ratio = node.positive_or("max_kinetic_ratio", 1.0);
+  // Measured: sheared 60- and 400-disc packings, before and after liquefaction, carry 3 to 32
+  // times the flow energy ½ Σ m (2 r |L|)²; a blow-up carries orders of magnitude more.
+  s.max_flow_ratio = node.positive_or("max_flow_ratio", 1000.0);
 
   s.contact = parse_contact(node.child("contact"));
   check_engine_limits(node.child("contact"), s);

@@ -33,6 +33,7 @@ struct PreparationSpec {
   double confining_pressure = 0.0;          //!< isotropic target p [Pa]
   std::optional<double> target_void_ratio;  //!< reached by lowering friction while compacting
   double tolerance = 0.005;                 //!< relative pressure tolerance at the end
+  double void_ratio_tolerance = 0.005;      //!< allowed |reached - target void ratio|
   double initial_solid_fraction = 0.0;      //!< of the loose random packing
   double max_strain_rate = 0.0;             //!< servo strain rate limit [1/s]
   long max_steps = 0;                       //!< DEM step budget for the whole preparation
@@ -64,7 +65,8 @@ struct RveSpec {
   SubstepSpec substeps;
   bool stream_velocity = true;     //!< affine motion by streaming velocity (remap v) or remap x
   double thickness = 0.0;          //!< 2D: out-of-plane thickness that turns N/m into Pa
-  double max_kinetic_ratio = 1.0;  //!< health limit on kinetic / elastic energy
+  double max_kinetic_ratio = 1.0;  //!< health limit on kinetic / elastic energy ...
+  double max_flow_ratio = 1000.0;  //!< ... together with kinetic / flow energy
   std::string log_file;            //!< engine log for debugging ("" = none)
 };
 
