@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace mpm_lig::rve {
@@ -9,11 +10,10 @@ namespace {
 
 //! Steps per servo cycle: short against the time a stress wave needs to cross the cell.
 constexpr int kChunk = 100;
-//! Compaction stops at the target void ratio once the pressure is this close (relative) to its
-//! target: the re-consolidation with the real friction then changes the void ratio little.
-constexpr double kNearTarget = 0.05;
 //! A relaxed packing: kinetic energy this small against the elastic energy.
 constexpr double kAtRest = 2e-3;
+//! A void ratio this close above the compaction floor counts as on it.
+constexpr double kFloorBand = 2e-4;
 
 //! Fastest servo strain rate: inertial number 5e-3 at the target pressure unless asked.
 double max_strain_rate(const RveSpec& spec, double pressure) {
@@ -22,10 +22,26 @@ double max_strain_rate(const RveSpec& spec, double pressure) {
   return 5e-3 / (2.0 * spec.radius.mean() * std::sqrt(spec.density / pressure));
 }
 
+//! Limits the servo's per-axis strains so that the void ratio does not fall below `floor`
+//! (no limit for floor <= 0): the compressive strains are scaled down together.
+void keep_above_void_ratio(Mat3& dF, const Observables& now, int dim, double floor) {
+  if (floor <= 0.0)
+    return;
+  double volumetric = 0.0;
+  for (int i = 0; i < dim; ++i)
+    volumetric += std::log(dF(i, i));
+  const double allowed = std::log((1.0 + floor) / (1.0 + now.void_ratio));
+  if (volumetric >= std::min(allowed, 0.0))
+    return;
+  const double scale = std::max(allowed, 0.0) / volumetric;
+  for (int i = 0; i < dim; ++i)
+    dF(i, i) = std::exp(scale * std::log(dF(i, i)));
+}
+
 }  // namespace
 
 Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left,
-                            double stop_void_ratio) {
+                            double void_ratio_floor) {
   const RveSpec& spec = rve.spec();
   const int dim = spec.dimension;
   const double max_step = max_strain_rate(spec, pressure) * kChunk * spec.time_step;
@@ -46,15 +62,17 @@ Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& s
       }
       dF(i, i) = 1.0 + strain;
     }
+    keep_above_void_ratio(dF, now, dim, void_ratio_floor);
     rve.deform(dF, kChunk);
     steps_left -= kChunk;
     now = rve.observe();
     const double p_new = mean_stress(now.stress, dim);
-    if (stop_void_ratio > 0.0 && now.void_ratio <= stop_void_ratio &&
-        std::abs(p_new - pressure) <= kNearTarget * pressure)
-      return now;
     const bool on_target = std::abs(p_new - pressure) <= tolerance * pressure;
-    settled = on_target && now.kinetic_ratio() < kAtRest ? settled + 1 : 0;
+    // Held at the floor below the target pressure: this friction cannot carry the target
+    // pressure at the target density, which is as dense as the caller wants it.
+    const bool on_floor = void_ratio_floor > 0.0 && now.void_ratio <= void_ratio_floor + kFloorBand &&
+                          p_new <= (1.0 + tolerance) * pressure;
+    settled = (on_target || on_floor) && now.kinetic_ratio() < kAtRest ? settled + 1 : 0;
     if (settled >= 3)
       return now;
   }
@@ -70,26 +88,49 @@ ConsolidationResult consolidate(Rve& rve) {
   long steps_left = prep.max_steps;
   double friction = spec.contact.friction;
   result.friction_used = friction;
-  // Lower friction lets grains slide into a denser packing; halve it until the target void
-  // ratio is reached (or friction is gone), stopping the compaction as soon as the void ratio
-  // crosses the target, then consolidate with the real friction.
   result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
   if (prep.target_void_ratio) {
-    while (result.final.void_ratio > *prep.target_void_ratio && friction > 0.0) {
+    const double target = *prep.target_void_ratio;
+    // Lower friction lets grains slide into a denser packing; halve it until the target is
+    // reached (or friction is gone), never compressing below the target void ratio, then
+    // consolidate with the real friction (which moves the void ratio by the elastic strain of
+    // the last pressure change only).
+    while (result.final.void_ratio > target + kFloorBand && friction > 0.0) {
       friction = friction > 1e-3 ? 0.5 * friction : 0.0;
       rve.set_friction(friction);
-      result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left,
-                                     *prep.target_void_ratio);
+      result.final =
+          servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left, target);
     }
     result.friction_used = friction;
-    result.void_ratio_reached = result.final.void_ratio <= *prep.target_void_ratio;
     if (friction != spec.contact.friction) {
       rve.set_friction(spec.contact.friction);
       result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
     }
+    result.void_ratio_error = result.final.void_ratio - target;
+    result.void_ratio_reached = std::abs(result.void_ratio_error) <= prep.void_ratio_tolerance;
   }
   result.steps = prep.max_steps - steps_left;
   return result;
+}
+
+void require_void_ratio(const Rve& rve, const ConsolidationResult& result) {
+  const PreparationSpec& prep = rve.spec().preparation;
+  if (!prep.target_void_ratio || result.void_ratio_reached)
+    return;
+  std::ostringstream message;
+  message << rve.label() << ": preparation reached void ratio " << result.final.void_ratio
+          << ", " << rve.spec().path << ".preparation.target_void_ratio asks "
+          << *prep.target_void_ratio << " +- " << prep.void_ratio_tolerance << " ("
+          << (result.void_ratio_error > 0.0
+                  ? "too loose even with the friction lowered to " +
+                        std::to_string(result.friction_used)
+                  : std::string("denser than asked: ") +
+                        (result.friction_used == rve.spec().contact.friction
+                             ? "the full friction already packs it denser; raise the target or "
+                               "lower the initial_solid_fraction"
+                             : "re-consolidating with the real friction compacted it further"))
+          << ")";
+  throw std::runtime_error(message.str());
 }
 
 }  // namespace mpm_lig::rve

@@ -10,7 +10,8 @@ struct ConsolidationResult {
   Observables final;         //!< state at the end (relaxed, at the target pressure)
   double friction_used = 0;  //!< lowest friction used while compacting
   long steps = 0;            //!< DEM steps spent
-  bool void_ratio_reached = true;
+  bool void_ratio_reached = true;  //!< within preparation.void_ratio_tolerance of the target
+  double void_ratio_error = 0.0;   //!< reached minus target void ratio
 };
 
 //! Isotropic servo compression of a fresh packing to `spec.preparation.confining_pressure`
@@ -19,10 +20,14 @@ struct ConsolidationResult {
 //! runs out.
 ConsolidationResult consolidate(Rve& rve);
 
+//! Throws std::runtime_error naming the RVE and the JSON path when a target void ratio was
+//! asked and missed by more than preparation.void_ratio_tolerance.
+void require_void_ratio(const Rve& rve, const ConsolidationResult& result);
+
 //! Servo the RVE isotropically to mean stress `pressure` (within `tolerance`, relative) and
-//! let it come to rest; returns the final state. With `stop_void_ratio` > 0 it returns as soon
-//! as the void ratio is at or below it with the pressure within 5 % of the target (compaction).
+//! let it come to rest; returns the final state. With `void_ratio_floor` > 0 it never
+//! compresses below that void ratio, and also returns when resting on it below the pressure.
 Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left,
-                            double stop_void_ratio = 0.0);
+                            double void_ratio_floor = 0.0);
 
 }  // namespace mpm_lig::rve
