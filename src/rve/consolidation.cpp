@@ -12,8 +12,11 @@ namespace {
 constexpr int kChunk = 100;
 //! A relaxed packing: kinetic energy this small against the elastic energy.
 constexpr double kAtRest = 2e-3;
-//! A void ratio this close above the compaction floor counts as on it.
-constexpr double kFloorBand = 2e-4;
+//! Friction stages towards a target void ratio: factor on the friction per stage.
+constexpr double kFrictionStep = 0.7;
+//! A compaction stage stops at its void ratio once the pressure is this close (relative) to
+//! its target: the re-consolidation with the real friction then changes the void ratio little.
+constexpr double kNearTarget = 0.05;
 
 //! Fastest servo strain rate: inertial number 5e-3 at the target pressure unless asked.
 double max_strain_rate(const RveSpec& spec, double pressure) {
@@ -22,26 +25,10 @@ double max_strain_rate(const RveSpec& spec, double pressure) {
   return 5e-3 / (2.0 * spec.radius.mean() * std::sqrt(spec.density / pressure));
 }
 
-//! Limits the servo's per-axis strains so that the void ratio does not fall below `floor`
-//! (no limit for floor <= 0): the compressive strains are scaled down together.
-void keep_above_void_ratio(Mat3& dF, const Observables& now, int dim, double floor) {
-  if (floor <= 0.0)
-    return;
-  double volumetric = 0.0;
-  for (int i = 0; i < dim; ++i)
-    volumetric += std::log(dF(i, i));
-  const double allowed = std::log((1.0 + floor) / (1.0 + now.void_ratio));
-  if (volumetric >= std::min(allowed, 0.0))
-    return;
-  const double scale = std::max(allowed, 0.0) / volumetric;
-  for (int i = 0; i < dim; ++i)
-    dF(i, i) = std::exp(scale * std::log(dF(i, i)));
-}
-
 }  // namespace
 
 Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left,
-                            double void_ratio_floor) {
+                            double stop_void_ratio) {
   const RveSpec& spec = rve.spec();
   const int dim = spec.dimension;
   const double max_step = max_strain_rate(spec, pressure) * kChunk * spec.time_step;
@@ -62,17 +49,15 @@ Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& s
       }
       dF(i, i) = 1.0 + strain;
     }
-    keep_above_void_ratio(dF, now, dim, void_ratio_floor);
     rve.deform(dF, kChunk);
     steps_left -= kChunk;
     now = rve.observe();
     const double p_new = mean_stress(now.stress, dim);
+    if (stop_void_ratio > 0.0 && now.void_ratio <= stop_void_ratio &&
+        std::abs(p_new - pressure) <= kNearTarget * pressure)
+      return now;
     const bool on_target = std::abs(p_new - pressure) <= tolerance * pressure;
-    // Held at the floor below the target pressure: this friction cannot carry the target
-    // pressure at the target density, which is as dense as the caller wants it.
-    const bool on_floor = void_ratio_floor > 0.0 && now.void_ratio <= void_ratio_floor + kFloorBand &&
-                          p_new <= (1.0 + tolerance) * pressure;
-    settled = (on_target || on_floor) && now.kinetic_ratio() < kAtRest ? settled + 1 : 0;
+    settled = on_target && now.kinetic_ratio() < kAtRest ? settled + 1 : 0;
     if (settled >= 3)
       return now;
   }
@@ -91,15 +76,18 @@ ConsolidationResult consolidate(Rve& rve) {
   result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
   if (prep.target_void_ratio) {
     const double target = *prep.target_void_ratio;
-    // Lower friction lets grains slide into a denser packing; halve it until the target is
-    // reached (or friction is gone), never compressing below the target void ratio, then
-    // consolidate with the real friction (which moves the void ratio by the elastic strain of
-    // the last pressure change only).
-    while (result.final.void_ratio > target + kFloorBand && friction > 0.0) {
-      friction = friction > 1e-3 ? 0.5 * friction : 0.0;
+    // Lower friction lets grains slide into a denser packing. Compaction cannot be undone, so
+    // the friction is lowered in stages of kFrictionStep, each compacting until the void ratio
+    // crosses the middle of the upper half of the tolerance band (with the pressure near its
+    // target) or the packing settles. Measured: halving the friction at once overshot by 0.02
+    // in 3D (400 spheres); settled stages without the crossing stop jump past the target in
+    // 2D (e = 0.2129 at friction 0.175 and 0.135, 0.1982 at 0.068 for a target 0.2083).
+    const double stop = target + 0.25 * prep.void_ratio_tolerance;
+    while (result.final.void_ratio > stop && friction > 0.0) {
+      friction = friction > 1e-3 ? kFrictionStep * friction : 0.0;
       rve.set_friction(friction);
       result.final =
-          servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left, target);
+          servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left, stop);
     }
     result.friction_used = friction;
     if (friction != spec.contact.friction) {

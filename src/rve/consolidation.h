@@ -25,9 +25,9 @@ ConsolidationResult consolidate(Rve& rve);
 void require_void_ratio(const Rve& rve, const ConsolidationResult& result);
 
 //! Servo the RVE isotropically to mean stress `pressure` (within `tolerance`, relative) and
-//! let it come to rest; returns the final state. With `void_ratio_floor` > 0 it never
-//! compresses below that void ratio, and also returns when resting on it below the pressure.
+//! let it come to rest; returns the final state. With `stop_void_ratio` > 0 it returns as soon
+//! as the void ratio is at or below it with the pressure within 5 % of the target (compaction).
 Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& steps_left,
-                            double void_ratio_floor = 0.0);
+                            double stop_void_ratio = 0.0);
 
 }  // namespace mpm_lig::rve
