@@ -1,0 +1,101 @@
+#!/usr/bin/python3
+"""Writes the MPM hard-case inputs of this folder (run it after changing them here; the JSON
+files are kept in the repository). Every case is a 1-cell-wide column whose node rows all have a
+prescribed velocity, so the motion of the DEM-backed points is known in closed form."""
+import json
+import math
+
+RVE = {"engine": "liggghts", "dimension": 2, "grains": 60, "radius": {"min": 0.003, "max": 0.007},
+       "density": 2650, "seed": 3,
+       "contact": {"youngs_modulus": 6e8, "stiffness_ratio": 0.8, "friction_deg": 28.6,
+                   "damping_ratio": 0.1},
+       "time_step_fraction": 0.15, "preparation": {"confining_pressure": 1e5},
+       "substeps": {"fixed": 20}}
+
+
+def row(y, width, direction, velocity, function=None):
+    bc = {"type": "velocity", "direction": direction, "velocity": velocity,
+          "nodes": {"box": {"min": [0, y], "max": [width, y]}}}
+    if function:
+        bc["function"] = function
+    return bc
+
+
+def column(title, cells_high, body_high, dt, steps, rows, output, rve=RVE, points=1):
+    width = 0.05
+    return {"title": title, "dimension": 2,
+            "analysis": {"type": "mpm", "time_step": {"fixed": dt}, "end": {"steps": steps}},
+            "mesh": {"origin": [0, 0], "size": [width, width * cells_high],
+                     "cells": [1, cells_high]},
+            "materials": [{"id": 1, "type": "dem_rve", "packings": 1, "rve": rve}],
+            "bodies": [{"material": 1, "box": {"min": [0, 0], "max": [width, width * body_high]},
+                        "points_per_cell": points}],
+            "boundary_conditions": rows(width), "output": output}
+
+
+def simple_shear_rows(cells, rate, function, extra=()):
+    """v_y = 0 everywhere, base fixed, v_x = rate * y on every node row (homogeneous shear)."""
+    def rows(width):
+        out = [{"type": "roller", "direction": "y",
+                "nodes": {"box": {"min": [0, 0], "max": [width, width * cells]}}},
+               {"type": "fixed", "nodes": {"face": "y-"}}]
+        out += [row(width * k, width, "x", rate * width * k, function) for k in range(1, cells + 1)]
+        return out
+    return rows
+
+
+# Liquefaction in an MPM run: undrained cyclic simple shear of a 2-point column, gamma_a = 2 %,
+# 50 steps per quarter cycle (the square velocity wave makes gamma a triangle between +-2 %),
+# 6.5 cycles. Measured: p' < 1 % p0' from step 690 (cycle 4) on.
+period, amplitude = 0.04, 0.02
+layer = column("Hard case: undrained cyclic simple shear of a 60-disc column through liquefaction",
+               2, 2, 2e-4, 1300, simple_shear_rows(2, 4 * amplitude / period,
+                                                      {"type": "square", "period": period}),
+               {"every": 500, "history_every": 5,
+                "simple_shear": {"material": 1, "boundary_condition": 3}})
+layer["materials"][0]["rve"] = dict(RVE, substeps={"inertial_number": 0.001, "min": 20,
+                                                   "max": 400})
+json.dump(layer, open("mpm_liquefaction.json", "w"), indent=1)
+
+# Extension: v_y = a y on every row: det F = exp(a t) = 1.5 at the end; the body fills 2 of 4
+# cells at the start and 3 at the end.
+a = 5.0
+steps = math.ceil(math.log(1.5) / a / 2e-4)
+def extension_rows(width):
+    out = [{"type": "roller", "direction": "x",
+            "nodes": {"box": {"min": [0, 0], "max": [width, width * 4]}}},
+           {"type": "fixed", "nodes": {"face": "y-"}}]
+    return out + [row(width * k, width, "y", a * width * k) for k in range(1, 5)]
+ext = column("Hard case: a DEM-backed column pulled apart to det F = 1.5", 4, 2, 2e-4, steps,
+             extension_rows, {"every": steps, "history_every": 5}, points=2)
+ext["_about"] = "v_y = %g y on every node row for %d steps of 2e-4 s: det F = exp(%g t) = 1.5" % (
+    a, steps, a)
+json.dump(ext, open("mpm_extension.json", "w"), indent=1)
+
+# Large shear: monotonic simple shear to gamma = 5 (five cell-basis reductions of the RVE).
+# The square wave keeps its sign for the first quarter period: a period of 4 t_end makes the
+# shear monotonic and gives the simple-shear history columns.
+rate, dt = 10.0, 2e-4
+shear = column("Hard case: simple shear of a DEM-backed column to gamma = 500 %", 1, 1, dt,
+               round(5.0 / rate / dt),
+               simple_shear_rows(1, rate, {"type": "square", "period": 4 * 5.0 / rate}),
+               {"every": 500, "history_every": 1,
+                "simple_shear": {"material": 1, "boundary_condition": 2}},
+               rve=dict(RVE, substeps={"fixed": 100}))
+# Periodic along x (a laterally infinite layer): the points cross the seam instead of the edge.
+shear["mesh"].update(size=[0.1, 0.05], cells=[2, 1], periodic=["x"])
+shear["bodies"][0]["box"]["max"] = [0.1, 0.05]
+for bc in shear["boundary_conditions"]:
+    bc["nodes"].get("box", {}).get("max", [0])[0:1] = [0.1]
+json.dump(shear, open("mpm_large_shear.json", "w"), indent=1)
+
+# A body carried out of the mesh: every node moves with v_x = 0.5 m/s; the point (0.075 m from
+# the mesh's far edge) leaves after 0.15 s = 750 steps; checkpoints every 100 steps.
+def carried(width):
+    return [{"type": "velocity", "direction": d, "velocity": v,
+             "nodes": {"box": {"min": [0, 0], "max": [2 * width, width]}}}
+            for d, v in (("x", 0.5), ("y", 0.0))]
+out = column("Hard case: a DEM-backed point carried out of the mesh", 1, 1, 2e-4, 1000, carried,
+             {"every": 100, "history_every": 10, "checkpoint_every": 100})
+out["mesh"]["size"], out["mesh"]["cells"] = [0.1, 0.05], [2, 1]
+json.dump(out, open("mpm_leaves_mesh.json", "w"), indent=1)
