@@ -163,6 +163,7 @@ std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohma
   if (rve_.preparation.target_void_ratio) {
     summary["preparation"]["target_void_ratio"] = *rve_.preparation.target_void_ratio;
     summary["preparation"]["void_ratio_error"] = c.void_ratio_error;
+    summary["preparation"]["compacted_void_ratio"] = c.compacted_void_ratio;
     summary["preparation"]["void_ratio_tolerance"] = rve_.preparation.void_ratio_tolerance;
   }
   int rank = 0;

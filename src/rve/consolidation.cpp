@@ -90,6 +90,7 @@ ConsolidationResult consolidate(Rve& rve) {
           servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left, stop);
     }
     result.friction_used = friction;
+    result.compacted_void_ratio = result.final.void_ratio;
     if (friction != spec.contact.friction) {
       rve.set_friction(spec.contact.friction);
       result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
@@ -106,18 +107,18 @@ void require_void_ratio(const Rve& rve, const ConsolidationResult& result) {
   if (!prep.target_void_ratio || result.void_ratio_reached)
     return;
   std::ostringstream message;
-  message << rve.label() << ": preparation reached void ratio " << result.final.void_ratio
-          << ", " << rve.spec().path << ".preparation.target_void_ratio asks "
-          << *prep.target_void_ratio << " +- " << prep.void_ratio_tolerance << " ("
-          << (result.void_ratio_error > 0.0
-                  ? "too loose even with the friction lowered to " +
-                        std::to_string(result.friction_used)
-                  : std::string("denser than asked: ") +
-                        (result.friction_used == rve.spec().contact.friction
-                             ? "the full friction already packs it denser; raise the target or "
-                               "lower the initial_solid_fraction"
-                             : "re-consolidating with the real friction compacted it further"))
-          << ")";
+  message << rve.label() << ": preparation reached void ratio " << result.final.void_ratio << ", "
+          << rve.spec().path << ".preparation.target_void_ratio asks " << *prep.target_void_ratio
+          << " +- " << prep.void_ratio_tolerance;
+  if (result.friction_used == rve.spec().contact.friction)
+    message << (result.void_ratio_error > 0.0
+                    ? ""
+                    : " (the full friction already packs it denser; preparation only densifies)");
+  else
+    message << " (compaction ended at " << result.compacted_void_ratio << " with friction "
+            << result.friction_used
+            << (result.void_ratio_error > 0.0 ? ", the lowest tried)"
+                                              : "; try another seed or a larger tolerance)");
   throw std::runtime_error(message.str());
 }
 

@@ -7,11 +7,12 @@ namespace mpm_lig::rve {
 
 //! How a consolidation went.
 struct ConsolidationResult {
-  Observables final;         //!< state at the end (relaxed, at the target pressure)
-  double friction_used = 0;  //!< lowest friction used while compacting
-  long steps = 0;            //!< DEM steps spent
-  bool void_ratio_reached = true;  //!< within preparation.void_ratio_tolerance of the target
-  double void_ratio_error = 0.0;   //!< reached minus target void ratio
+  Observables final;                  //!< state at the end (relaxed, at the target pressure)
+  double friction_used = 0;           //!< lowest friction used while compacting
+  long steps = 0;                     //!< DEM steps spent
+  bool void_ratio_reached = true;     //!< within preparation.void_ratio_tolerance of the target
+  double void_ratio_error = 0.0;      //!< reached minus target void ratio
+  double compacted_void_ratio = 0.0;  //!< at the end of the last low-friction stage
 };
 
 //! Isotropic servo compression of a fresh packing to `spec.preparation.confining_pressure`

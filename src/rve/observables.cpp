@@ -16,8 +16,7 @@ double Observables::kinetic_ratio() const {
 double Observables::flow_ratio() const {
   if (kinetic_energy == 0.0)
     return 0.0;
-  return flow_energy > 0.0 ? kinetic_energy / flow_energy
-                           : std::numeric_limits<double>::infinity();
+  return flow_energy > 0.0 ? kinetic_energy / flow_energy : std::numeric_limits<double>::infinity();
 }
 
 double mean_stress(const Mat3& sigma, int dimension) {
@@ -100,7 +99,8 @@ void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact
   for (std::size_t i = 0; i < grains.x.size(); ++i) {
     // Every grain, rattlers too: a grain crossing a large part of its radius in one step is
     // numerical whether or not it touches another.
-    const double speed = (fluctuation[i] - drift).norm() + grains.omega[i].norm() * grains.radius[i];
+    const double speed =
+        (fluctuation[i] - drift).norm() + grains.omega[i].norm() * grains.radius[i];
     out.max_speed_ratio = std::max(out.max_speed_ratio, speed / grains.radius[i]);
     out.flow_energy += 0.5 * grains.mass[i] * std::pow(2.0 * rate * grains.radius[i], 2);
     // Rattlers (no contact) fly freely and undamped without touching the stress: leave

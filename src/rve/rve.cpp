@@ -117,8 +117,8 @@ void Rve::check_blow_up(const Observables& now) const {
     problem << "a grain moves " << now.step_travel << " of its radius per DEM step (limit "
             << kMaxStepTravel << "): numerical blow-up; time step too large?";
   else if (now.max_overlap_ratio > kMaxOverlapRatio)
-    problem << "two grains overlap by " << now.max_overlap_ratio
-            << " of the smaller radius (limit " << kMaxOverlapRatio
+    problem << "two grains overlap by " << now.max_overlap_ratio << " of the smaller radius (limit "
+            << kMaxOverlapRatio
             << "): numerical blow-up or a pressure far beyond the contact law's range";
   if (!problem.str().empty())
     throw std::runtime_error(label_ + ": " + problem.str());
