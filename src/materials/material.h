@@ -63,6 +63,9 @@ class Material {
   virtual double density() const = 0;
   //! Largest constrained (P-wave) modulus the material can show [Pa]: sets the CFL time step.
   virtual double wave_modulus() const = 0;
+  //! Largest CFL number (time step over cell / wave speed) at which explicit MPM with this
+  //! material was measured stable: 1 for a material whose wave_modulus() bounds its stiffness.
+  virtual double max_cfl() const { return 1.0; }
 
   //! Add `count` points with zero stress and fresh state; returns the index of the first.
   virtual std::size_t add_points(std::size_t count) = 0;

@@ -159,6 +159,23 @@ void read_materials(const CaseNode& root, const materials::MaterialRegistry& reg
   }
 }
 
+//! A CFL number above what a material was measured stable at is refused before anything runs.
+void check_cfl(const CaseNode& root, const MpmCase& c) {
+  if (c.fixed_time_step)
+    return;
+  for (std::size_t k = 0; k < c.materials.size(); ++k) {
+    const double limit = c.materials[k]->max_cfl();
+    std::ostringstream text;
+    text << limit;
+    if (c.cfl > limit)
+      root.child("analysis")
+          .child("time_step")
+          .fail("cfl", "must be <= " + text.str() + " with materials[" + std::to_string(k) +
+                           "] (type \"" + c.materials[k]->type() +
+                           "\"): measured unstable above it (docs/testing.md, Hard cases)");
+  }
+}
+
 int material_index(const CaseNode& node, const std::string& key, const MpmCase& c) {
   const int id = node.get<int>(key);
   const auto it = std::find(c.material_ids.begin(), c.material_ids.end(), id);
@@ -403,6 +420,7 @@ MpmCase read_case(const CaseNode& root, const materials::MaterialRegistry& regis
   c.gravity = root.has("gravity") ? read_vector(root, "gravity", c.dimension)
                                   : std::vector<double>(c.dimension, 0.0);
   read_materials(root, registry, c);
+  check_cfl(root, c);
   read_bodies(root, c);
   read_boundary_conditions(root, c);
   read_rigid_bodies(root, c);
