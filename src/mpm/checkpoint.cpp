@@ -111,7 +111,7 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
   file.set("time", solver.time());
   file.set("steps", static_cast<double>(solver.steps()));
   file.set("history_rows", static_cast<double>(recorder.history_rows));
-  file.set("peak_q", recorder.peak_q);
+  file.set("peak_q", recorder.peak_bearing_pressure);
   file.close();
   std::ofstream out(dir + "/" + CheckpointFolder::kCase);
   out << c.document.dump(1) << '\n';
@@ -221,7 +221,7 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
   MPI_Barrier(comm);
   RecorderState r;
   r.history_rows = static_cast<long>(file.get("history_rows"));
-  r.peak_q = file.get("peak_q");
+  r.peak_bearing_pressure = file.get("peak_q");
   return r;
 }
 

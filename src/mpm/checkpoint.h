@@ -11,8 +11,8 @@ namespace mpm_lig::mpm {
 
 //! What the Recorder must know to continue its files after a resume.
 struct RecorderState {
-  long history_rows = 0;  //!< data rows of history.csv (header excluded)
-  double peak_q = 0.0;
+  long history_rows = 0;               //!< data rows of history.csv (header excluded)
+  double peak_bearing_pressure = 0.0;  //!< highest footing load / contact area so far [Pa]
 };
 
 //! Checkpoints of a run in `run_dir/checkpoints/` (names: CheckpointFolder):

@@ -34,7 +34,7 @@ void fill_body(const MpmCase& c, int body_index, Particles<D>& p) {
     Vec v = Eigen::Map<const Vec>(body.velocity.data());
     if (body.has_profile) {
       const double s =
-          std::sin(0.5 * M_PI * (x[body.profile_axis] - body.profile_start) / body.profile_length);
+          std::sin(0.5 * kPi * (x[body.profile_axis] - body.profile_start) / body.profile_length);
       v += s * Eigen::Map<const Vec>(body.profile_amplitude.data());
     }
     p.position.push_back(x);

@@ -21,11 +21,6 @@ struct Observables {
   double kinetic_ratio() const;
 };
 
-//! Mean stress p (compression positive) of a tension-positive σ: in-plane mean in 2D.
-double mean_stress(const Mat3& sigma, int dimension);
-//! Deviatoric stress q: sqrt(3/2 s:s) in 3D; the Mohr-circle radius in the plane in 2D.
-double deviator_stress(const Mat3& sigma, int dimension);
-
 //! Grain state gathered from an engine, ordered by grain id.
 struct GrainState {
   std::vector<Vec3> x, v, omega;

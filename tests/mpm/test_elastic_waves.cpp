@@ -13,7 +13,7 @@ namespace {
 
 // cases/mpm/bar_vibration.json
 constexpr double kLength = 1.0, kWaveSpeed = 10.0, kV0 = 0.01;
-const double kOmega = M_PI * kWaveSpeed / (2.0 * kLength);
+const double kOmega = kPi * kWaveSpeed / (2.0 * kLength);
 
 struct BarResult {
   double period_error;     // relative, mean period from zero crossings
@@ -37,7 +37,7 @@ BarResult run_bar(int cells, const std::string& shape) {
     const auto& p = s.particles();
     double num = 0.0, den = 0.0;
     for (std::size_t k = 0; k < p.size(); ++k) {
-      const double mode = std::sin(0.5 * M_PI * p.reference[k].x() / kLength);
+      const double mode = std::sin(0.5 * kPi * p.reference[k].x() / kLength);
       num += p.mass[k] * (p.position[k].x() - p.reference[k].x()) * mode;
       den += p.mass[k] * mode * mode;
     }
@@ -56,7 +56,7 @@ BarResult run_bar(int cells, const std::string& shape) {
   }
   EXPECT_GE(crossings.size(), 2u);
   const double period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
-  const double exact_period = 2.0 * M_PI / kOmega, exact_amplitude = kV0 / kOmega;
+  const double exact_period = 2.0 * kPi / kOmega, exact_amplitude = kV0 / kOmega;
   return {std::abs(period / exact_period - 1.0), std::abs(peak / exact_amplitude - 1.0)};
 }
 

@@ -68,13 +68,13 @@ void check_collapse_load(const std::string& name, double lo, double hi, double u
 
 TEST(Footing, PrandtlOnTrescaSoil) {
   // q_u = (2 + pi) c_u, c_u = 10 kPa.
-  check_collapse_load("prandtl_tresca", 0.015, 0.03, 1.0e4, 2.0 + M_PI, 0.05);
+  check_collapse_load("prandtl_tresca", 0.015, 0.03, 1.0e4, 2.0 + kPi, 0.05);
 }
 
 TEST(Footing, VesicNqOnWeightlessMohrCoulombSoil) {
   // q_u = N_q q0, q0 = 10 kPa, N_q = tan^2(pi/4 + phi/2) exp(pi tan phi), phi = 28.1 deg.
-  const double phi = 28.1 * M_PI / 180.0;
-  const double nq = std::pow(std::tan(M_PI / 4 + phi / 2), 2) * std::exp(M_PI * std::tan(phi));
+  const double phi = 28.1 * kPi / 180.0;
+  const double nq = std::pow(std::tan(kPi / 4 + phi / 2), 2) * std::exp(kPi * std::tan(phi));
   check_collapse_load("vesic_mohr_coulomb", 0.015, 0.03, 1.0e4, nq, 0.15);
 }
 
@@ -101,7 +101,7 @@ double worst_spike(const LoadCurve& curve, double qu) {
 
 TEST(Footing, LargePenetrationWithGimpIsSmooth) {
   // A point leaving the mesh or a non-finite position ends the run with an exception.
-  const double qu = (2.0 + M_PI) * 1.0e4;
+  const double qu = (2.0 + kPi) * 1.0e4;
   const LoadCurve gimp = run_footing("footing_large_penetration");
   ASSERT_GE(gimp.settlement_ratio.back(), 1.5);
   EXPECT_TRUE(gimp.finite);

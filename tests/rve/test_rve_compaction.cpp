@@ -7,6 +7,7 @@
 #include "core/case_node.h"
 #include "rve/consolidation.h"
 #include "rve/rve.h"
+#include "test_rve_spec.h"
 
 using namespace mpm_lig;
 
@@ -15,13 +16,10 @@ namespace {
 constexpr double kPressure = 1e5;
 
 rve::RveSpec spec_with(const std::string& preparation) {
-  const auto doc = CaseDocument::parse(R"({"rve": {"dimension": 2, "grains": 100,
-      "radius": {"min": 0.003, "max": 0.007}, "density": 2650, "seed": 11,
-      "contact": {"youngs_modulus": 7e8, "poisson_ratio": 0.3, "friction": 0.5,
-                  "damping_ratio": 0.1},
-      "time_step_fraction": 0.15, "preparation": )" +
-                                       preparation + R"(, "substeps": {"fixed": 50}}})");
-  return rve::parse_rve_spec(doc.root().child("rve"));
+  nlohmann::json rve = test::small_rve_json();
+  rve["seed"] = 11;
+  rve["preparation"] = nlohmann::json::parse(preparation);
+  return test::parse_rve(rve);
 }
 
 }  // namespace
@@ -43,8 +41,7 @@ TEST(RveCompaction, ReachesTargetVoidRatioAndRestoresFriction) {
   // Compaction stops as soon as the void ratio crosses the target; re-consolidating with the
   // real friction moves it by a few 1e-4 at most.
   EXPECT_NEAR(c.final.void_ratio, target, 2e-3);
-  EXPECT_NEAR(rve::mean_stress(c.final.stress, 2), kPressure,
-              spec.preparation.tolerance * kPressure);
+  EXPECT_NEAR(mean_pressure(c.final.stress, 2), kPressure, spec.preparation.tolerance * kPressure);
   EXPECT_LT(c.final.kinetic_ratio(), 0.01);
   // Friction restored: a denser packing with the real friction is at least as strong in
   // shear as the looser reference (a frictionless one would lose most of its strength).
@@ -55,6 +52,6 @@ TEST(RveCompaction, ReachesTargetVoidRatioAndRestoresFriction) {
     dense->deform(shear);
   }
   const Mat3 s_ref = reference->stress(), s_dense = dense->stress();
-  EXPECT_GT(rve::deviator_stress(s_dense, 2) / rve::mean_stress(s_dense, 2),
-            0.9 * rve::deviator_stress(s_ref, 2) / rve::mean_stress(s_ref, 2));
+  EXPECT_GT(deviatoric_stress(s_dense, 2) / mean_pressure(s_dense, 2),
+            0.9 * deviatoric_stress(s_ref, 2) / mean_pressure(s_ref, 2));
 }
