@@ -162,6 +162,7 @@ int main(int argc, char** argv) {
   std::string refusal;
   context.output_dir = run_directory(*cl, refusal);
   context.resume = cl->resume_dir.has_value();
+  context.hooks = mpm_lig::TestHooks::from_environment();
   if (!refusal.empty())
     return refuse(refusal, mpm_lig::kExitBadCase);
   try {

@@ -111,6 +111,7 @@ void DemRveMaterial::check_run(std::size_t points, int ranks, const std::string&
 void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   const double start = MPI_Wtime();
   comm_ = context.comm;
+  hooks_ = context.hooks;
   MPI_Comm_rank(comm_, &rank_);
   const std::string& work_dir = context.work_dir;
   if (spec_.restart_file.empty()) {
@@ -212,11 +213,9 @@ void DemRveMaterial::create_rves() {
 }
 
 void DemRveMaterial::inject_fault_if_asked(std::size_t point, rve::Rve& rve) const {
-  const char* target = std::getenv("MPM_LIG_FAULT_POINT");
-  if (!target || std::strtoul(target, nullptr, 10) != point)
+  if (hooks_.fault_point < 0 || static_cast<std::size_t>(hooks_.fault_point) != point)
     return;
-  const char* when = std::getenv("MPM_LIG_FAULT_UPDATE");
-  if (updates_ == (when ? std::strtol(when, nullptr, 10) : 1L))
+  if (updates_ == hooks_.fault_update)
     rve.engine().command("mpm_lig_injected_fault (MPM_LIG_FAULT_POINT)");
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -52,11 +51,6 @@ void start_fresh_checkpoints(const std::string& run_dir, MPI_Comm comm) {
   MPI_Barrier(comm);
 }
 
-long kill_step() {
-  const char* v = std::getenv("MPM_LIG_KILL_AT_STEP");
-  return v ? std::strtol(v, nullptr, 10) : -1;
-}
-
 }  // namespace
 
 long main_stage_steps(const MpmCase& c, double dt) {
@@ -73,9 +67,11 @@ long main_stage_steps(const MpmCase& c, double dt) {
   return static_cast<long>(steps);
 }
 
-void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir) {
+void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir,
+                       const TestHooks& hooks) {
   materials::MaterialContext context;
   context.comm = comm;
+  context.hooks = hooks;
   for (std::size_t m = 0; m < c.materials.size(); ++m) {
     context.work_dir = work_dir + "/m" + std::to_string(c.material_ids[m]);
     c.materials[m]->prepare(context);
@@ -117,7 +113,6 @@ bool run_case(MpmCase& c, const RunOptions& options,
     if (!options.resume)
       snapshots->after_step(solver);
   }
-  const long kill_at = kill_step();
   int rank = 0;
   MPI_Comm_rank(options.comm, &rank);
   while (solver.steps() < total) {
@@ -154,7 +149,7 @@ bool run_case(MpmCase& c, const RunOptions& options,
       }
       return false;
     }
-    if (rank == 0 && solver.steps() == kill_at)
+    if (rank == 0 && solver.steps() == options.hooks.kill_at_step)
       std::raise(SIGKILL);
   }
   // Collective: every rank's DEM time, so the summary can show the load balance.

@@ -62,7 +62,8 @@ class MpmAnalysis final : public Analysis {
     options.comm = context.comm;
     MPI_Comm_size(context.comm, &options.ranks);
     const double start = MPI_Wtime();
-    prepare_materials(case_, context.comm, dir + "/packings");
+    options.hooks = context.hooks;
+    prepare_materials(case_, context.comm, dir + "/packings", context.hooks);
     options.prior_seconds = MPI_Wtime() - start;
     // A run stopped by a signal has written its checkpoint and said so: it ends normally.
     if (case_.dimension == 2)
