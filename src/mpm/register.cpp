@@ -2,7 +2,6 @@
 
 #include <mpi.h>
 
-#include "coupling/register.h"
 #include "mpm/case_spec.h"
 #include "mpm/driver.h"
 #include "mpm/resources.h"
@@ -84,13 +83,9 @@ std::unique_ptr<Analysis> make_analysis(const CaseNode& root,
   return std::make_unique<MpmAnalysis>(read_case(root, materials));
 }
 
-void register_analyses(AnalysisRegistry& registry) {
-  registry.add("mpm", [](const CaseNode& root) {
-    materials::MaterialRegistry materials;
-    materials::register_materials(materials);
-    coupling::register_materials(materials);
-    return make_analysis(root, materials);
-  });
+void register_analyses(AnalysisRegistry& registry, materials::MaterialRegistry materials) {
+  auto shared = std::make_shared<const materials::MaterialRegistry>(std::move(materials));
+  registry.add("mpm", [shared](const CaseNode& root) { return make_analysis(root, *shared); });
 }
 
 }  // namespace mpm_lig::mpm
