@@ -156,7 +156,8 @@ void on_rank0_or_end_job(int rank, long step, Work&& work) {
 
 template <int D>
 std::string checkpoint_obstacle(const Solver<D>& solver) {
-  for (const auto& m : solver.materials()) {
+  for (std::size_t k = 0; k < solver.materials().size(); ++k) {
+    const materials::Material* m = solver.materials()[k];
     if (!m->checkpointable())
       return "material type '" + m->type() + "' has state variables a checkpoint does not save";
   }
@@ -164,7 +165,7 @@ std::string checkpoint_obstacle(const Solver<D>& solver) {
 }
 
 template <int D>
-void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderState& recorder,
+void write_checkpoint(const MpmCase& c, Solver<D>& solver, const RecorderState& recorder,
                       const std::string& run_dir, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -225,9 +226,9 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
   return r;
 }
 
-template void write_checkpoint<2>(const MpmCase&, const Solver<2>&, const RecorderState&,
+template void write_checkpoint<2>(const MpmCase&, Solver<2>&, const RecorderState&,
                                   const std::string&, MPI_Comm);
-template void write_checkpoint<3>(const MpmCase&, const Solver<3>&, const RecorderState&,
+template void write_checkpoint<3>(const MpmCase&, Solver<3>&, const RecorderState&,
                                   const std::string&, MPI_Comm);
 template RecorderState read_checkpoint<2>(const MpmCase&, Solver<2>&, const std::string&, MPI_Comm);
 template RecorderState read_checkpoint<3>(const MpmCase&, Solver<3>&, const std::string&, MPI_Comm);

@@ -30,7 +30,7 @@ struct RecorderState {
 //! is written; the previous step folder is removed only then, so a kill at any moment leaves
 //! one complete checkpoint. A failure on any rank ends the job (exit 1) and keeps the previous.
 template <int D>
-void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderState& recorder,
+void write_checkpoint(const MpmCase& c, Solver<D>& solver, const RecorderState& recorder,
                       const std::string& run_dir, MPI_Comm comm);
 
 //! Collective: overwrite a freshly built solver (and its materials) with the last checkpoint

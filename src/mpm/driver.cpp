@@ -67,22 +67,17 @@ long main_stage_steps(const MpmCase& c, double dt) {
   return static_cast<long>(steps);
 }
 
-void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir,
+void prepare_materials(MpmProblem& problem, MPI_Comm comm, const std::string& work_dir,
                        const TestHooks& hooks) {
-  materials::MaterialContext context;
-  context.comm = comm;
-  context.hooks = hooks;
-  for (std::size_t m = 0; m < c.materials.size(); ++m) {
-    context.work_dir = work_dir + "/m" + std::to_string(c.material_ids[m]);
-    c.materials[m]->prepare(context);
-  }
+  problem.materials.prepare(problem.spec.material_ids, comm, work_dir, hooks);
 }
 
 template <int D>
-bool run_case(MpmCase& c, const RunOptions& options,
+bool run_case(MpmProblem problem, const RunOptions& options,
               const std::function<void(const Solver<D>&)>& observer) {
   const auto start = std::chrono::steady_clock::now();
-  Solver<D> solver(c);
+  const MpmCase& c = problem.spec;
+  Solver<D> solver(c, std::move(problem.materials));
   const bool checkpoints = options.checkpoints && !options.run_dir.empty();
   RecorderState resumed;
   if (checkpoints && !options.resume)
@@ -172,9 +167,9 @@ bool run_case(MpmCase& c, const RunOptions& options,
   return true;
 }
 
-template bool run_case<2>(MpmCase&, const RunOptions&,
+template bool run_case<2>(MpmProblem, const RunOptions&,
                           const std::function<void(const Solver<2>&)>&);
-template bool run_case<3>(MpmCase&, const RunOptions&,
+template bool run_case<3>(MpmProblem, const RunOptions&,
                           const std::function<void(const Solver<3>&)>&);
 
 }  // namespace mpm_lig::mpm

@@ -92,10 +92,10 @@ void append_simple_shear(const Solver<D>& solver, const SimpleShearOutput& shear
 
 }  // namespace
 
-materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::Material>>& m) {
+materials::MaterialCost total_cost(const MaterialSet& materials) {
   materials::MaterialCost total;
-  for (const auto& material : m) {
-    const materials::MaterialCost c = material->cost();
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    const materials::MaterialCost c = materials[m]->cost();
     total.simulations += c.simulations;
     total.particle_steps += c.particle_steps;
     total.compute_seconds += c.compute_seconds;

@@ -22,7 +22,7 @@ struct RunTotals {
 };
 
 //! The materials' cost counters added up (DEM RVEs; zero for continuum materials).
-materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::Material>>& m);
+materials::MaterialCost total_cost(const MaterialSet& materials);
 
 //! What an MPM run writes into its output folder: history.csv (every `history_every`
 //! steps), results.h5/.xdmf (every `output_every` steps), one progress line per output

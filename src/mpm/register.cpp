@@ -15,7 +15,7 @@ namespace {
 //! stresses. Only rank 0 writes files and progress.
 class MpmAnalysis final : public Analysis {
  public:
-  explicit MpmAnalysis(MpmCase c) : case_(std::move(c)) {}
+  explicit MpmAnalysis(MpmProblem problem) : problem_(std::move(problem)) {}
 
   bool supports_resume() const override { return true; }
 
@@ -62,18 +62,19 @@ class MpmAnalysis final : public Analysis {
     MPI_Comm_size(context.comm, &options.ranks);
     const double start = MPI_Wtime();
     options.hooks = context.hooks;
-    prepare_materials(case_, context.comm, dir + "/packings", context.hooks);
+    prepare_materials(problem_, context.comm, dir + "/packings", context.hooks);
     options.prior_seconds = MPI_Wtime() - start;
     // A run stopped by a signal has written its checkpoint and said so: it ends normally.
-    if (case_.dimension == 2)
-      run_case<2>(case_, options);
+    // run() is called once: the problem's materials move into the solver.
+    if (problem_.spec.dimension == 2)
+      run_case<2>(std::move(problem_), options);
     else
-      run_case<3>(case_, options);
+      run_case<3>(std::move(problem_), options);
     MPI_Barrier(context.comm);
   }
 
  private:
-  MpmCase case_;
+  MpmProblem problem_;
 };
 
 }  // namespace

@@ -21,13 +21,13 @@ struct LoadCurve {
 
 //! Runs case `name` (with other shape functions if `shape` is given).
 LoadCurve run_footing(const std::string& name, const std::string& shape = "") {
-  MpmCase c = testing::load_case(name, [&](nlohmann::json& j) {
+  MpmProblem c = testing::load_case(name, [&](nlohmann::json& j) {
     j["output"]["fields"] = false;
     if (!shape.empty())
       j["analysis"]["shape_function"] = shape;
   });
   LoadCurve curve;
-  run_case<2>(c, "", [&](const Solver<2>& s) {
+  run_case<2>(std::move(c), "", [&](const Solver<2>& s) {
     const auto& f = s.footings().front();
     curve.settlement_ratio.push_back(f.settlement() / kWidth);
     curve.q.push_back(f.load() / f.contact_area());
@@ -146,12 +146,12 @@ TEST(Footing, ThreeDimensionalSlabMatchesPlaneStrain) {
     j["rigid_bodies"][0]["width"] = {1.0, 0.1};
   };
   std::vector<double> q2, q3;
-  MpmCase c2 = testing::load_case("prandtl_tresca", coarse);
-  run_case<2>(c2, "", [&](const Solver<2>& s) {
+  MpmProblem c2 = testing::load_case("prandtl_tresca", coarse);
+  run_case<2>(std::move(c2), "", [&](const Solver<2>& s) {
     q2.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
   });
-  MpmCase c3 = testing::load_case("prandtl_tresca", slab);
-  run_case<3>(c3, "", [&](const Solver<3>& s) {
+  MpmProblem c3 = testing::load_case("prandtl_tresca", slab);
+  run_case<3>(std::move(c3), "", [&](const Solver<3>& s) {
     q3.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
   });
   ASSERT_EQ(q2.size(), q3.size());
