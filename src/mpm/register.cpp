@@ -52,7 +52,7 @@ class MpmAnalysis final : public Analysis {
     const std::string& dir = context.output_dir;
     // Before anything is written or prepared: a resume that could lose results is refused.
     if (context.resume)
-      check_resume(case_, dir, context.comm);
+      check_resume(problem_.spec, dir, context.comm);
     RunOptions options;
     options.run_dir = dir;
     options.write_results = rank == 0;
