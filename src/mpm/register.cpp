@@ -20,26 +20,27 @@ class MpmAnalysis final : public Analysis {
   bool supports_resume() const override { return true; }
 
   void check_run(const RunContext& context) const override {
-    check_step_counts(case_);
+    const MpmCase& c = problem_.spec;
+    check_step_counts(c);
     int ranks = 1;
     MPI_Comm_size(context.comm, &ranks);
-    const std::vector<double> points = points_per_material(case_);
+    const std::vector<double> points = points_per_material(c);
     MemoryBudget budget;
-    add_mpm_memory(case_, points, budget);
-    for (std::size_t m = 0; m < case_.materials.size(); ++m)
-      case_.materials[m]->check_run(static_cast<std::size_t>(points[m]), ranks, context.output_dir,
-                                    budget);
+    add_mpm_memory(c, points, budget);
+    for (std::size_t m = 0; m < problem_.materials.size(); ++m)
+      problem_.materials[m]->check_run(static_cast<std::size_t>(points[m]), ranks, context.output_dir,
+                                       budget);
     budget.check(context.comm);
   }
 
   std::vector<std::string> unchecked() const override {
     std::vector<std::string> lines;
-    if (!case_.fixed_time_step && case_.end_steps == 0)
+    if (!problem_.spec.fixed_time_step && problem_.spec.end_steps == 0)
       lines.push_back(
           "analysis.end.time: the step count (1 ... 1e12), which needs the CFL time "
           "step of the prepared materials");
-    for (std::size_t m = 0; m < case_.materials.size(); ++m) {
-      if (case_.materials[m]->has_snapshots())
+    for (std::size_t m = 0; m < problem_.materials.size(); ++m) {
+      if (problem_.materials[m]->has_snapshots())
         lines.push_back("materials[" + std::to_string(m) +
                         "]: the DEM packings (preparation or restart file contents)");
     }
