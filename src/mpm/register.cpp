@@ -28,8 +28,8 @@ class MpmAnalysis final : public Analysis {
     MemoryBudget budget;
     add_mpm_memory(c, points, budget);
     for (std::size_t m = 0; m < problem_.materials.size(); ++m)
-      problem_.materials[m]->check_run(static_cast<std::size_t>(points[m]), ranks, context.output_dir,
-                                       budget);
+      problem_.materials[m]->check_run(static_cast<std::size_t>(points[m]), ranks,
+                                       context.output_dir, budget);
     budget.check(context.comm);
   }
 
