@@ -15,11 +15,12 @@
 #include "core/case_node.h"
 #include "materials/material.h"
 #include "mpm/case_spec.h"
+#include "mpm/driver.h"
 #include "mpm/solver.h"
 
 namespace {
 
-using mpm_lig::mpm::MpmCase;
+using mpm_lig::mpm::MpmProblem;
 
 struct Variant {
   int dimension;
@@ -63,8 +64,9 @@ nlohmann::json make_case(const Variant& v) {
 }
 
 template <int D>
-double updates_per_second(MpmCase& c, long steps, std::size_t& points) {
-  mpm_lig::mpm::Solver<D> solver(c);
+double updates_per_second(MpmProblem& c, long steps, std::size_t& points) {
+  mpm_lig::mpm::prepare_materials(c, MPI_COMM_SELF, "bench_mpm_packings");  // continuum: no files
+  mpm_lig::mpm::Solver<D> solver(c.spec, std::move(c.materials));
   points = solver.particles().size();
   solver.step();  // warm-up: first touch of the work arrays
   const auto start = std::chrono::steady_clock::now();
@@ -99,7 +101,7 @@ int main(int argc, char** argv) {
   std::printf("%-4s %-7s %-5s %9s %14s\n", "dim", "shape", "scheme", "points", "updates/s");
   for (const Variant& v : variants) {
     const auto document = mpm_lig::CaseDocument::parse(make_case(v).dump());
-    MpmCase c = mpm_lig::mpm::read_case(document.root(), registry);
+    MpmProblem c = mpm_lig::mpm::read_case(document.root(), registry);
     std::size_t points = 0;
     const double rate = v.dimension == 2 ? updates_per_second<2>(c, steps, points)
                                          : updates_per_second<3>(c, steps, points);

@@ -14,8 +14,12 @@
 #include "core/case_node.h"
 #include "core/mpi_session.h"
 #include "core/printable.h"
-#include "element/register.h"
+#include "materials/material.h"
 #include "mpm/register.h"
+#if MPM_LIG_WITH_DEM
+#include "coupling/register.h"
+#include "element/register.h"
+#endif
 
 namespace {
 
@@ -80,10 +84,17 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, bool report
   return cl;
 }
 
+//! The program's analyses and materials: the continuum MPM always; with a DEM engine built,
+//! element tests on an RVE and the multiscale "dem_rve" material too.
 mpm_lig::AnalysisRegistry make_registry() {
   mpm_lig::AnalysisRegistry registry;
+  mpm_lig::materials::MaterialRegistry materials;
+  mpm_lig::materials::register_materials(materials);
+#if MPM_LIG_WITH_DEM
+  mpm_lig::coupling::register_materials(materials);
   mpm_lig::element::register_analyses(registry);
-  mpm_lig::mpm::register_analyses(registry);
+#endif
+  mpm_lig::mpm::register_analyses(registry, std::move(materials));
   return registry;
 }
 
@@ -162,6 +173,7 @@ int main(int argc, char** argv) {
   std::string refusal;
   context.output_dir = run_directory(*cl, refusal);
   context.resume = cl->resume_dir.has_value();
+  context.hooks = mpm_lig::TestHooks::from_environment();
   if (!refusal.empty())
     return refuse(refusal, mpm_lig::kExitBadCase);
   try {

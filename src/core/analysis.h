@@ -8,6 +8,7 @@
 
 #include "core/case_node.h"
 #include "core/registry.h"
+#include "core/test_hooks.h"
 
 namespace mpm_lig {
 
@@ -19,6 +20,7 @@ struct RunContext {
   std::string output_dir;
   bool resume = false;  //!< continue from the last checkpoint in output_dir
   MPI_Comm comm = MPI_COMM_WORLD;
+  TestHooks hooks;  //!< fault injection asked for by the tests (none by default)
 };
 
 //! One kind of run (an element test on an RVE, an MPM problem, ...). Constructed from

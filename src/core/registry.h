@@ -3,6 +3,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,12 @@ class Registry {
  public:
   using Creator = std::function<std::unique_ptr<Product>(Args...)>;
 
-  void add(const std::string& name, Creator creator) { creators_[name] = std::move(creator); }
+  //! Register `name`; a name registered twice is a programming error (std::logic_error), not
+  //! a silent replacement of the first variant.
+  void add(const std::string& name, Creator creator) {
+    if (!creators_.emplace(name, std::move(creator)).second)
+      throw std::logic_error("registry: '" + name + "' is registered twice");
+  }
 
   bool contains(const std::string& name) const { return creators_.count(name) != 0; }
 

@@ -1,10 +1,16 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 
 #include <Eigen/Dense>
 
 namespace mpm_lig {
+
+//! π, the one definition the code uses.
+inline constexpr double kPi = 3.14159265358979323846;
+//! One degree in radians.
+inline constexpr double kDegree = kPi / 180.0;
 
 using Mat3 = Eigen::Matrix3d;
 using Vec3 = Eigen::Vector3d;
@@ -27,15 +33,33 @@ inline Mat3 from_voigt(const Voigt6& v) {
   return t;
 }
 
-//! Mean stress p = -tr(σ)/3 (compression positive, as in soil mechanics) for a tension-positive σ.
-inline double mean_pressure(const Mat3& sigma) {
-  return -sigma.trace() / 3.0;
+//! Mean stress p (compression positive, as in soil mechanics) of a tension-positive σ:
+//! -tr(σ)/3, or the in-plane mean -(σxx + σyy)/2 for a 2D (disc) packing's stress.
+inline double mean_pressure(const Mat3& sigma, int dimension = 3) {
+  return dimension == 2 ? -0.5 * (sigma(0, 0) + sigma(1, 1)) : -sigma.trace() / 3.0;
 }
 
-//! Deviatoric (von Mises) stress q = sqrt(3/2 s:s).
-inline double deviatoric_stress(const Mat3& sigma) {
+//! Deviatoric stress q: the von Mises sqrt(3/2 s:s), or for a 2D (disc) packing's stress the
+//! in-plane Mohr-circle radius.
+inline double deviatoric_stress(const Mat3& sigma, int dimension = 3) {
+  if (dimension == 2)
+    return std::hypot(0.5 * (sigma(0, 0) - sigma(1, 1)), sigma(0, 1));
   const Mat3 s = sigma - (sigma.trace() / 3.0) * Mat3::Identity();
   return std::sqrt(1.5 * s.cwiseProduct(s).sum());
+}
+
+//! Logarithmic (Hencky) strain ln V = ½ ln(F Fᵀ), tension positive. Principal stretches are
+//! floored at 1e-300 so that a degenerate F gives a large finite strain, not -inf.
+inline Mat3 hencky_strain(const Mat3& deformation) {
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(deformation * deformation.transpose());
+  const Vec3 log_stretch = 0.5 * eig.eigenvalues().array().max(1e-300).log();
+  return eig.eigenvectors() * log_stretch.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+//! Deviatoric strain invariant ε_q = sqrt(2/3 e:e), e the deviatoric part of `strain`.
+inline double deviatoric_strain(const Mat3& strain) {
+  const Mat3 e = strain - (strain.trace() / 3.0) * Mat3::Identity();
+  return std::sqrt(2.0 / 3.0 * e.cwiseProduct(e).sum());
 }
 
 }  // namespace mpm_lig

@@ -113,6 +113,7 @@ void DemRveMaterial::check_run(std::size_t points, int ranks, const std::string&
 void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   const double start = MPI_Wtime();
   comm_ = context.comm;
+  hooks_ = context.hooks;
   MPI_Comm_rank(comm_, &rank_);
   const std::string& work_dir = context.work_dir;
   if (spec_.restart_file.empty()) {
@@ -220,17 +221,15 @@ void DemRveMaterial::start_work_ledger() {
   // A packing read from a restart file has no preparation pressure: its own stress stands in.
   double p = spec_.preparation.confining_pressure;
   if (p <= 0.0 && !packings_.empty())
-    p = rve::mean_stress(packings_.front().stress, spec_.dimension);
+    p = mean_pressure(packings_.front().stress, spec_.dimension);
   work_.start(points_, static_cast<double>(spec_.grains),
               spec_.substeps.fixed > 0 ? 0 : spec_.substeps.max, p);
 }
 
 void DemRveMaterial::inject_fault_if_asked(std::size_t point, rve::Rve& rve) const {
-  const char* target = std::getenv("MPM_LIG_FAULT_POINT");
-  if (!target || std::strtoul(target, nullptr, 10) != point)
+  if (hooks_.fault_point < 0 || static_cast<std::size_t>(hooks_.fault_point) != point)
     return;
-  const char* when = std::getenv("MPM_LIG_FAULT_UPDATE");
-  if (updates_ == (when ? std::strtol(when, nullptr, 10) : 1L))
+  if (updates_ == hooks_.fault_update)
     rve.engine().command("mpm_lig_injected_fault (MPM_LIG_FAULT_POINT)");
 }
 
@@ -278,7 +277,7 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
   stress_ = layout_->gather(owned_stress);
   substeps_ = layout_->gather(owned_steps, 1);
   for (std::size_t i = 0; i < points.size(); ++i)
-    work_.add(points[i], substeps_[points[i]], rve::mean_stress(before[points[i]], spec_.dimension),
+    work_.add(points[i], substeps_[points[i]], mean_pressure(before[points[i]], spec_.dimension),
               dF[i]);
   cost_.compute_seconds += computed - start;
   cost_.communication_seconds += MPI_Wtime() - computed;

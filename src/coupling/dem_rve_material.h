@@ -28,9 +28,10 @@ struct Packing {
 //! rank calls update() with the same batch; each rank group deforms the RVEs it owns and
 //! the stresses are gathered to all ranks in point order (RveLayout).
 //!
-//! Test-only fault injection: with MPM_LIG_FAULT_POINT=i in the environment, the rank that owns
-//! point i sends its engine an unknown command at update MPM_LIG_FAULT_UPDATE (default 1):
-//! the engine's own error path must end the whole job naming the point and its rank.
+//! Test-only fault injection (MaterialContext::hooks, from MPM_LIG_FAULT_POINT=i and
+//! MPM_LIG_FAULT_UPDATE=u at start-up): the rank that owns point i sends its engine an unknown
+//! command at update u; the engine's own error path must end the whole job naming the point
+//! and its rank.
 class DemRveMaterial final : public materials::Material {
  public:
   //! Validates the whole node; creates nothing.
@@ -91,6 +92,7 @@ class DemRveMaterial final : public materials::Material {
   int ranks_per_rve_ = 1;
 
   MPI_Comm comm_ = MPI_COMM_NULL;
+  TestHooks hooks_;
   std::vector<Packing> packings_;
   std::size_t points_ = 0;
   std::unique_ptr<RveLayout> layout_;

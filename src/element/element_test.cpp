@@ -21,7 +21,6 @@
 namespace mpm_lig::element {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 //! Most strain increments an element test may take (each is at least one DEM run).
 constexpr double kMaxIncrements = 1e9;
 
@@ -72,12 +71,12 @@ std::vector<std::string> history_columns() {
 std::vector<double> history_row(int increment, double time, const Mat3& F,
                                 const rve::Observables& o, int dimension, int substeps) {
   std::vector<double> row = {double(increment), time};
-  for (double e : to_voigt(rve::hencky_strain(F)))
+  for (double e : to_voigt(hencky_strain(F)))
     row.push_back(e);
   for (double s : to_voigt(o.stress))
     row.push_back(s);
-  row.push_back(rve::mean_stress(o.stress, dimension));
-  row.push_back(rve::deviator_stress(o.stress, dimension));
+  row.push_back(mean_pressure(o.stress, dimension));
+  row.push_back(deviatoric_stress(o.stress, dimension));
   row.push_back(std::log(F.determinant()));
   row.push_back(F(0, 1) / F(1, 1));
   row.push_back(o.void_ratio);
@@ -104,8 +103,8 @@ double mobilised_friction_deg(const Mat3& sigma, int dimension) {
 }
 
 nlohmann::json state_json(const rve::Observables& o, int dimension) {
-  return {{"p", rve::mean_stress(o.stress, dimension)},
-          {"q", rve::deviator_stress(o.stress, dimension)},
+  return {{"p", mean_pressure(o.stress, dimension)},
+          {"q", deviatoric_stress(o.stress, dimension)},
           {"stress", to_voigt(o.stress)},
           {"void_ratio", o.void_ratio},
           {"coordination_number", o.coordination_number},
@@ -150,7 +149,7 @@ std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohma
   }
   auto rve = rve::Rve::generate(rve_, context.comm, "RVE 0");
   const rve::ConsolidationResult c = rve::consolidate(*rve);
-  const double p = rve::mean_stress(c.final.stress, rve_.dimension);
+  const double p = mean_pressure(c.final.stress, rve_.dimension);
   const double target = rve_.preparation.confining_pressure;
   summary["preparation"] = {{"target_pressure", target},
                             {"pressure", p},
@@ -181,12 +180,12 @@ std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohma
 //! stiffness, so that the drained servo never over-corrects.
 double ElementTest::lateral_stiffness(rve::Rve& rve) {
   const double probe = test_.strain_increment;
-  const double p0 = rve::mean_stress(rve.stress(), rve_.dimension);
+  const double p0 = mean_pressure(rve.stress(), rve_.dimension);
   Mat3 dF = Mat3::Identity() * std::exp(-probe);
   if (rve_.dimension == 2)
     dF(2, 2) = 1.0;
   rve.deform(dF);
-  const double p1 = rve::mean_stress(rve.stress(), rve_.dimension);
+  const double p1 = mean_pressure(rve.stress(), rve_.dimension);
   rve.deform(dF.inverse());
   return std::max((p1 - p0) / probe, 10.0 * std::abs(p0));
 }
@@ -211,7 +210,7 @@ void ElementTest::run(const RunContext& context) {
   rve::Observables now = rve->observe();
   rve->check_health(now);
   double confining = test_.confining_pressure > 0.0 ? test_.confining_pressure
-                                                    : rve::mean_stress(now.stress, rve_.dimension);
+                                                    : mean_pressure(now.stress, rve_.dimension);
   double stiffness = 0.0;
   if (test_.kind == TestKind::kDrainedCompression) {
     stiffness = lateral_stiffness(*rve);

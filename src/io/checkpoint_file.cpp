@@ -122,18 +122,14 @@ void copy_steps_up_to(const std::string& source, const std::string& target, long
   H5File in(check(H5Fopen(source.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open '" + source + "'"));
   H5File out(check(H5Fcreate(target.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                    "create '" + target + "'"));
-  hsize_t count = 0;
-  H5Gget_num_objs(in.get(), &count);
-  for (hsize_t k = 0; k < count; ++k) {
-    char name[256];
-    H5Gget_objname_by_idx(in.get(), k, name, sizeof name);
-    H5Attribute a(check(H5Aopen_by_name(in.get(), name, "step", H5P_DEFAULT, H5P_DEFAULT),
-                        "read the step of '" + std::string(name) + "'"));
+  for (const std::string& name : member_names(in.get())) {
+    H5Attribute a(check(H5Aopen_by_name(in.get(), name.c_str(), "step", H5P_DEFAULT, H5P_DEFAULT),
+                        "read the step of '" + name + "'"));
     long long step = 0;
     H5Aread(a.get(), H5T_NATIVE_LLONG, &step);
     if (step <= last_step)
-      check(H5Ocopy(in.get(), name, out.get(), name, H5P_DEFAULT, H5P_DEFAULT),
-            "copy '" + std::string(name) + "'");
+      check(H5Ocopy(in.get(), name.c_str(), out.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+            "copy '" + name + "'");
   }
   if (!out.reset())
     throw std::runtime_error("HDF5: cannot close '" + target + "'");

@@ -55,12 +55,8 @@ XdmfStep read_step(hid_t file, const std::string& group_name) {
   step.group = group_name;
   step.time = read_attribute<double>(file, group_name.c_str(), "time", H5T_NATIVE_DOUBLE);
   step.points = dataset_layout(group.get(), "positions").dims[0];
-  hsize_t count = 0;
-  H5Gget_num_objs(group.get(), &count);
-  for (hsize_t k = 0; k < count; ++k) {
-    char name[256];
-    H5Gget_objname_by_idx(group.get(), k, name, sizeof name);
-    if (std::string(name) == "positions")
+  for (const std::string& name : member_names(group.get())) {
+    if (name == "positions")
       continue;
     step.fields.push_back({name, kind_of(dataset_layout(group.get(), name), name)});
   }
@@ -72,13 +68,10 @@ XdmfStep read_step(hid_t file, const std::string& group_name) {
 std::vector<XdmfStep> read_field_steps(const std::string& h5_path) {
   H5File file(
       check(H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open '" + h5_path + "'"));
-  hsize_t count = 0;
-  H5Gget_num_objs(file.get(), &count);
   std::vector<std::pair<long long, XdmfStep>> steps;
-  for (hsize_t k = 0; k < count; ++k) {
-    char name[256];
-    H5Gget_objname_by_idx(file.get(), k, name, sizeof name);
-    const auto number = read_attribute<long long>(file.get(), name, "step", H5T_NATIVE_LLONG);
+  for (const std::string& name : member_names(file.get())) {
+    const auto number =
+        read_attribute<long long>(file.get(), name.c_str(), "step", H5T_NATIVE_LLONG);
     steps.emplace_back(number, read_step(file.get(), name));
   }
   // Group names sort by step only up to 999999 steps: order by the step attribute.

@@ -11,6 +11,7 @@
 #include "core/registry.h"
 #include "core/resources.h"
 #include "core/tensor.h"
+#include "core/test_hooks.h"
 #include "materials/checkpoint_io.h"
 
 namespace mpm_lig::materials {
@@ -19,6 +20,7 @@ namespace mpm_lig::materials {
 struct MaterialContext {
   MPI_Comm comm = MPI_COMM_WORLD;  //!< every rank of the run (the MPM is replicated on all)
   std::string work_dir;            //!< for files the material makes (packings); may not exist yet
+  TestHooks hooks;                 //!< fault injection asked for by the tests
 };
 
 //! Cost counters of a material whose points run simulations of their own (DEM RVEs). The

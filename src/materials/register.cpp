@@ -12,8 +12,6 @@
 namespace mpm_lig::materials {
 namespace {
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
-
 std::unique_ptr<Material> read_linear_elastic(const CaseNode& node) {
   const double density = node.positive("density");
   return std::make_unique<LinearElastic>(density, Elasticity::read(node));

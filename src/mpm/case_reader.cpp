@@ -145,7 +145,8 @@ void read_mesh(const CaseNode& m, MpmCase& c) {
   }
 }
 
-void read_materials(const CaseNode& root, const materials::MaterialRegistry& registry, MpmCase& c) {
+void read_materials(const CaseNode& root, const materials::MaterialRegistry& registry, MpmCase& c,
+                    MaterialSet& materials) {
   const auto nodes = root.children("materials");
   if (nodes.empty())
     root.fail("materials", "needs at least one material");
@@ -154,24 +155,24 @@ void read_materials(const CaseNode& root, const materials::MaterialRegistry& reg
     if (std::count(c.material_ids.begin(), c.material_ids.end(), id) != 0)
       m.fail("id", "material id " + std::to_string(id) + " is used twice");
     c.material_ids.push_back(id);
-    c.materials.push_back(registry.create(m, "type", m));
-    c.materials.back()->check_dimension(m, c.dimension);
+    materials.add(registry.create(m, "type", m));
+    materials[materials.size() - 1]->check_dimension(m, c.dimension);
   }
 }
 
 //! A CFL number above what a material was measured stable at is refused before anything runs.
-void check_cfl(const CaseNode& root, const MpmCase& c) {
+void check_cfl(const CaseNode& root, const MpmCase& c, const MaterialSet& materials) {
   if (c.fixed_time_step)
     return;
-  for (std::size_t k = 0; k < c.materials.size(); ++k) {
-    const double limit = c.materials[k]->max_cfl();
+  for (std::size_t k = 0; k < materials.size(); ++k) {
+    const double limit = materials[k]->max_cfl();
     std::ostringstream text;
     text << limit;
     if (c.cfl > limit)
       root.child("analysis")
           .child("time_step")
           .fail("cfl", "must be <= " + text.str() + " with materials[" + std::to_string(k) +
-                           "] (type \"" + c.materials[k]->type() +
+                           "] (type \"" + materials[k]->type() +
                            "\"): measured unstable above it (docs/testing.md, Hard cases)");
   }
 }
@@ -359,7 +360,7 @@ void read_simple_shear(const CaseNode& o, MpmCase& c) {
 
 //! output.rve_snapshots: {"at": [[x, y], ...], "every": n}; every position must lie in a body
 //! whose material has a microstructure (dem_rve).
-void read_rve_snapshots(const CaseNode& o, MpmCase& c) {
+void read_rve_snapshots(const CaseNode& o, MpmCase& c, const MaterialSet& materials) {
   if (!o.has("rve_snapshots"))
     return;
   const CaseNode s = o.child("rve_snapshots");
@@ -377,7 +378,7 @@ void read_rve_snapshots(const CaseNode& o, MpmCase& c) {
       s.fail(key, "expected " + std::to_string(c.dimension) + " numbers (a position)");
     const std::vector<double> x = v.get<std::vector<double>>();
     const bool on_dem = std::any_of(c.bodies.begin(), c.bodies.end(), [&](const Body& b) {
-      return c.materials[b.material]->has_snapshots() && b.box.contains(x.data(), c.dimension, 0.0);
+      return materials[b.material]->has_snapshots() && b.box.contains(x.data(), c.dimension, 0.0);
     });
     if (!on_dem)
       s.fail(key, "lies in no body of a dem_rve material");
@@ -385,7 +386,7 @@ void read_rve_snapshots(const CaseNode& o, MpmCase& c) {
   }
 }
 
-void read_output(const CaseNode& root, MpmCase& c) {
+void read_output(const CaseNode& root, MpmCase& c, const MaterialSet& materials) {
   if (!root.has("output"))
     return;
   const CaseNode o = root.child("output");
@@ -395,11 +396,12 @@ void read_output(const CaseNode& root, MpmCase& c) {
     o.fail("history_every", "must be >= 1");
   c.write_fields = o.get_or<bool>("fields", true);
   read_simple_shear(o, c);
-  read_rve_snapshots(o, c);
+  read_rve_snapshots(o, c, materials);
   if ((c.checkpoint_every = o.get_or<long>("checkpoint_every", 0)) < 0)
     o.fail("checkpoint_every", "must be >= 0 (0: checkpoints on SIGTERM/SIGINT only)");
-  for (const auto& m : c.materials) {
+  for (std::size_t k = 0; k < materials.size(); ++k) {
     // A checkpoint saves each point's stress; a DEM point's RVE saves its own state.
+    const auto* m = materials[k];
     if (c.checkpoint_every > 0 && !m->checkpointable())
       o.fail("checkpoint_every", "material type '" + m->type() +
                                      "' has state variables a checkpoint does not save yet");
@@ -408,8 +410,9 @@ void read_output(const CaseNode& root, MpmCase& c) {
 
 }  // namespace
 
-MpmCase read_case(const CaseNode& root, const materials::MaterialRegistry& registry) {
-  MpmCase c;
+MpmProblem read_case(const CaseNode& root, const materials::MaterialRegistry& registry) {
+  MpmProblem problem;
+  MpmCase& c = problem.spec;
   c.document = root.json();
   c.title = root.get_or<std::string>("title", "");
   c.dimension = root.get<int>("dimension");
@@ -419,13 +422,13 @@ MpmCase read_case(const CaseNode& root, const materials::MaterialRegistry& regis
   read_mesh(root.child("mesh"), c);
   c.gravity = root.has("gravity") ? read_vector(root, "gravity", c.dimension)
                                   : std::vector<double>(c.dimension, 0.0);
-  read_materials(root, registry, c);
-  check_cfl(root, c);
+  read_materials(root, registry, c, problem.materials);
+  check_cfl(root, c, problem.materials);
   read_bodies(root, c);
   read_boundary_conditions(root, c);
   read_rigid_bodies(root, c);
-  read_output(root, c);
-  return c;
+  read_output(root, c, problem.materials);
+  return problem;
 }
 
 }  // namespace mpm_lig::mpm

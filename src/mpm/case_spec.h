@@ -6,6 +6,7 @@
 
 #include "core/case_node.h"
 #include "materials/material.h"
+#include "mpm/material_set.h"
 #include "mpm/time_function.h"
 
 namespace mpm_lig::mpm {
@@ -81,7 +82,8 @@ struct RveSnapshotOutput {
   long every = 0;
 };
 
-//! Everything an MPM run needs, validated; dimension-independent plain data.
+//! Everything an MPM run needs but its materials, validated: dimension-independent plain data
+//! (copyable, no live objects).
 struct MpmCase {
   std::string title;
   //! The case as read: a checkpoint keeps it, and a resume compares it key by key.
@@ -110,8 +112,7 @@ struct MpmCase {
   std::vector<bool> periodic;
 
   std::vector<double> gravity;
-  std::vector<std::unique_ptr<materials::Material>> materials;
-  std::vector<int> material_ids;  //!< the case file's "id" of each material
+  std::vector<int> material_ids;  //!< the case file's "id" of each material (MaterialSet order)
   std::vector<Body> bodies;
   std::vector<Constraint> constraints;
   std::vector<Traction> tractions;
@@ -126,8 +127,15 @@ struct MpmCase {
   RveSnapshotOutput rve_snapshots;
 };
 
+//! A case as read from its file: the plain data and the materials it names, created from their
+//! case nodes but not prepared yet (see MaterialSet for the order of a run).
+struct MpmProblem {
+  MpmCase spec;
+  MaterialSet materials;
+};
+
 //! Read and validate the whole case (everything but "title" and "analysis.type", which the
 //! application reads). Every problem is a CaseError with its JSON path.
-MpmCase read_case(const CaseNode& root, const materials::MaterialRegistry& registry);
+MpmProblem read_case(const CaseNode& root, const materials::MaterialRegistry& registry);
 
 }  // namespace mpm_lig::mpm

@@ -111,7 +111,7 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
   file.set("time", solver.time());
   file.set("steps", static_cast<double>(solver.steps()));
   file.set("history_rows", static_cast<double>(recorder.history_rows));
-  file.set("peak_q", recorder.peak_q);
+  file.set("peak_q", recorder.peak_bearing_pressure);
   file.close();
   std::ofstream out(dir + "/" + CheckpointFolder::kCase);
   out << c.document.dump(1) << '\n';
@@ -156,7 +156,8 @@ void on_rank0_or_end_job(int rank, long step, Work&& work) {
 
 template <int D>
 std::string checkpoint_obstacle(const Solver<D>& solver) {
-  for (const auto& m : solver.materials()) {
+  for (std::size_t k = 0; k < solver.materials().size(); ++k) {
+    const materials::Material* m = solver.materials()[k];
     if (!m->checkpointable())
       return "material type '" + m->type() + "' has state variables a checkpoint does not save";
   }
@@ -164,7 +165,7 @@ std::string checkpoint_obstacle(const Solver<D>& solver) {
 }
 
 template <int D>
-void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderState& recorder,
+void write_checkpoint(const MpmCase& c, Solver<D>& solver, const RecorderState& recorder,
                       const std::string& run_dir, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -221,13 +222,13 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
   MPI_Barrier(comm);
   RecorderState r;
   r.history_rows = static_cast<long>(file.get("history_rows"));
-  r.peak_q = file.get("peak_q");
+  r.peak_bearing_pressure = file.get("peak_q");
   return r;
 }
 
-template void write_checkpoint<2>(const MpmCase&, const Solver<2>&, const RecorderState&,
+template void write_checkpoint<2>(const MpmCase&, Solver<2>&, const RecorderState&,
                                   const std::string&, MPI_Comm);
-template void write_checkpoint<3>(const MpmCase&, const Solver<3>&, const RecorderState&,
+template void write_checkpoint<3>(const MpmCase&, Solver<3>&, const RecorderState&,
                                   const std::string&, MPI_Comm);
 template RecorderState read_checkpoint<2>(const MpmCase&, Solver<2>&, const std::string&, MPI_Comm);
 template RecorderState read_checkpoint<3>(const MpmCase&, Solver<3>&, const std::string&, MPI_Comm);

@@ -11,8 +11,8 @@ namespace mpm_lig::mpm {
 
 //! What the Recorder must know to continue its files after a resume.
 struct RecorderState {
-  long history_rows = 0;  //!< data rows of history.csv (header excluded)
-  double peak_q = 0.0;
+  long history_rows = 0;               //!< data rows of history.csv (header excluded)
+  double peak_bearing_pressure = 0.0;  //!< highest footing load / contact area so far [Pa]
 };
 
 //! Checkpoints of a run in `run_dir/checkpoints/` (names: CheckpointFolder):
@@ -30,7 +30,7 @@ struct RecorderState {
 //! is written; the previous step folder is removed only then, so a kill at any moment leaves
 //! one complete checkpoint. A failure on any rank ends the job (exit 1) and keeps the previous.
 template <int D>
-void write_checkpoint(const MpmCase& c, const Solver<D>& solver, const RecorderState& recorder,
+void write_checkpoint(const MpmCase& c, Solver<D>& solver, const RecorderState& recorder,
                       const std::string& run_dir, MPI_Comm comm);
 
 //! Collective: overwrite a freshly built solver (and its materials) with the last checkpoint

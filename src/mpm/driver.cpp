@@ -4,7 +4,6 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -52,11 +51,6 @@ void start_fresh_checkpoints(const std::string& run_dir, MPI_Comm comm) {
   MPI_Barrier(comm);
 }
 
-long kill_step() {
-  const char* v = std::getenv("MPM_LIG_KILL_AT_STEP");
-  return v ? std::strtol(v, nullptr, 10) : -1;
-}
-
 }  // namespace
 
 long main_stage_steps(const MpmCase& c, double dt) {
@@ -73,20 +67,17 @@ long main_stage_steps(const MpmCase& c, double dt) {
   return static_cast<long>(steps);
 }
 
-void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir) {
-  materials::MaterialContext context;
-  context.comm = comm;
-  for (std::size_t m = 0; m < c.materials.size(); ++m) {
-    context.work_dir = work_dir + "/m" + std::to_string(c.material_ids[m]);
-    c.materials[m]->prepare(context);
-  }
+void prepare_materials(MpmProblem& problem, MPI_Comm comm, const std::string& work_dir,
+                       const TestHooks& hooks) {
+  problem.materials.prepare(problem.spec.material_ids, comm, work_dir, hooks);
 }
 
 template <int D>
-bool run_case(MpmCase& c, const RunOptions& options,
+bool run_case(MpmProblem problem, const RunOptions& options,
               const std::function<void(const Solver<D>&)>& observer) {
   const auto start = std::chrono::steady_clock::now();
-  Solver<D> solver(c);
+  const MpmCase& c = problem.spec;
+  Solver<D> solver(c, std::move(problem.materials));
   const bool checkpoints = options.checkpoints && !options.run_dir.empty();
   RecorderState resumed;
   if (checkpoints && !options.resume)
@@ -117,7 +108,6 @@ bool run_case(MpmCase& c, const RunOptions& options,
     if (!options.resume)
       snapshots->after_step(solver);
   }
-  const long kill_at = kill_step();
   int rank = 0;
   MPI_Comm_rank(options.comm, &rank);
   while (solver.steps() < total) {
@@ -154,7 +144,7 @@ bool run_case(MpmCase& c, const RunOptions& options,
       }
       return false;
     }
-    if (rank == 0 && solver.steps() == kill_at)
+    if (rank == 0 && solver.steps() == options.hooks.kill_at_step)
       std::raise(SIGKILL);
   }
   // Collective: every rank's DEM time, so the summary can show the load balance.
@@ -177,9 +167,9 @@ bool run_case(MpmCase& c, const RunOptions& options,
   return true;
 }
 
-template bool run_case<2>(MpmCase&, const RunOptions&,
+template bool run_case<2>(MpmProblem, const RunOptions&,
                           const std::function<void(const Solver<2>&)>&);
-template bool run_case<3>(MpmCase&, const RunOptions&,
+template bool run_case<3>(MpmProblem, const RunOptions&,
                           const std::function<void(const Solver<3>&)>&);
 
 }  // namespace mpm_lig::mpm

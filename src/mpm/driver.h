@@ -5,6 +5,7 @@
 
 #include <mpi.h>
 
+#include "core/test_hooks.h"
 #include "mpm/case_spec.h"
 #include "mpm/solver.h"
 
@@ -24,31 +25,38 @@ struct RunOptions {
   int ranks = 1;               //!< MPI ranks of the run (for the summary)
   double prior_seconds = 0.0;  //!< wall time spent before run_case (material preparation)
   MPI_Comm comm = MPI_COMM_WORLD;
+  TestHooks hooks;  //!< test-only: hooks.kill_at_step (see run_case)
 };
 
-//! Collective over `comm`: every material's prepare() (DEM packings go to `work_dir`). Must
-//! come before run_case, which reads densities and wave moduli.
-void prepare_materials(MpmCase& c, MPI_Comm comm, const std::string& work_dir);
+//! Collective over `comm`: every material's prepare() (DEM packings go to `work_dir`/m<id>).
+//! The order of a run: read_case → prepare_materials → run_case (which builds the Solver).
+void prepare_materials(MpmProblem& problem, MPI_Comm comm, const std::string& work_dir,
+                       const TestHooks& hooks = {});
 
-//! Runs a validated, prepared case: the gravity stage (if any), then the main stage until the
-//! end time or step count, with the Recorder's output when `options.write_results`.
+//! Runs a validated case with prepared materials: the gravity stage (if any), then the main
+//! stage until the end time or step count, with the Recorder's output when
+//! `options.write_results`.
 //! `observer` (optional) sees the solver after every main-stage step: tests use it.
 //! Returns false if SIGTERM/SIGINT/SIGHUP stopped the run (after writing a checkpoint).
 //!
-//! Test-only: with MPM_LIG_KILL_AT_STEP=n in the environment, rank 0 kills itself with SIGKILL
-//! after step n is recorded (the resume-identity test).
+//! Test-only: with options.hooks.kill_at_step = n, rank 0 kills itself with SIGKILL after
+//! step n is recorded (the resume-identity test).
 template <int D>
-bool run_case(MpmCase& c, const RunOptions& options,
+bool run_case(MpmProblem problem, const RunOptions& options,
               const std::function<void(const Solver<D>&)>& observer = {});
 
-//! The same with results in `directory` only, or no files if it is empty (serial runs, tests).
+//! The same with results in `directory` only, or no files if it is empty (serial runs, tests);
+//! materials not prepared yet are prepared here, on this process alone (DEM packings in
+//! `directory`/packings).
 template <int D>
-bool run_case(MpmCase& c, const std::string& directory,
+bool run_case(MpmProblem problem, const std::string& directory,
               const std::function<void(const Solver<D>&)>& observer = {}) {
+  if (!problem.materials.prepared())
+    prepare_materials(problem, MPI_COMM_SELF, (directory.empty() ? "." : directory) + "/packings");
   RunOptions options;
   options.run_dir = directory;
   options.comm = MPI_COMM_SELF;  // one process's run: no collective over other ranks
-  return run_case<D>(c, options, observer);
+  return run_case<D>(std::move(problem), options, observer);
 }
 
 //! Steps the main stage will take.

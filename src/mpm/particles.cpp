@@ -8,10 +8,10 @@ namespace mpm_lig::mpm {
 namespace {
 
 template <int D>
-void fill_body(const MpmCase& c, int body_index, Particles<D>& p) {
+void fill_body(const MpmCase& c, MaterialSet& materials, int body_index, Particles<D>& p) {
   using Vec = typename Particles<D>::Vec;
   const Body& body = c.bodies[body_index];
-  materials::Material& material = *c.materials[body.material];
+  materials::Material& material = *materials[body.material];
   std::array<long, D> count{};
   Vec spacing, cell;
   long total = 1;
@@ -34,7 +34,7 @@ void fill_body(const MpmCase& c, int body_index, Particles<D>& p) {
     Vec v = Eigen::Map<const Vec>(body.velocity.data());
     if (body.has_profile) {
       const double s =
-          std::sin(0.5 * M_PI * (x[body.profile_axis] - body.profile_start) / body.profile_length);
+          std::sin(0.5 * kPi * (x[body.profile_axis] - body.profile_start) / body.profile_length);
       v += s * Eigen::Map<const Vec>(body.profile_amplitude.data());
     }
     p.position.push_back(x);
@@ -56,14 +56,14 @@ void fill_body(const MpmCase& c, int body_index, Particles<D>& p) {
 }  // namespace
 
 template <int D>
-Particles<D> generate_particles(MpmCase& c) {
+Particles<D> generate_particles(const MpmCase& c, MaterialSet& materials) {
   Particles<D> p;
   for (int b = 0; b < static_cast<int>(c.bodies.size()); ++b)
-    fill_body<D>(c, b, p);
+    fill_body<D>(c, materials, b, p);
   return p;
 }
 
-template Particles<2> generate_particles<2>(MpmCase&);
-template Particles<3> generate_particles<3>(MpmCase&);
+template Particles<2> generate_particles<2>(const MpmCase&, MaterialSet&);
+template Particles<3> generate_particles<3>(const MpmCase&, MaterialSet&);
 
 }  // namespace mpm_lig::mpm

@@ -36,6 +36,6 @@ struct Particles {
 //! Fill every body's box with points (points_per_cell per cell and axis, equally spaced,
 //! filling the box exactly), register them with their materials, set initial velocities.
 template <int D>
-Particles<D> generate_particles(MpmCase& c);
+Particles<D> generate_particles(const MpmCase& c, MaterialSet& materials);
 
 }  // namespace mpm_lig::mpm

@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "io/summary.h"
-#include "mpm/point_fields.h"
 
 namespace mpm_lig::mpm {
 namespace {
@@ -93,10 +92,10 @@ void append_simple_shear(const Solver<D>& solver, const SimpleShearOutput& shear
 
 }  // namespace
 
-materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::Material>>& m) {
+materials::MaterialCost total_cost(const MaterialSet& materials) {
   materials::MaterialCost total;
-  for (const auto& material : m) {
-    const materials::MaterialCost c = material->cost();
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    const materials::MaterialCost c = materials[m]->cost();
     total.simulations += c.simulations;
     total.particle_steps += c.particle_steps;
     total.compute_seconds += c.compute_seconds;
@@ -113,6 +112,8 @@ template <int D>
 std::vector<std::string> Recorder<D>::history_columns(const MpmCase& c) {
   std::vector<std::string> columns = {"step", "time", "kinetic_energy"};
   for (std::size_t k = 0; k < c.footings.size(); ++k) {
+    // "q" is the footing's bearing pressure (load / contact area), the name geotechnical
+    // load-settlement plots use; users' scripts read it, so it keeps that name.
     for (const char* name : {"settlement", "load", "q"})
       columns.push_back(footing_prefix(k) + name);
   }
@@ -164,7 +165,7 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
     return;
   }
   history_rows_ = resume->history_rows;
-  peak_q_ = resume->peak_q;
+  peak_bearing_pressure_ = resume->peak_bearing_pressure;
   last_step_ = solver.steps();
 }
 
@@ -173,7 +174,7 @@ void Recorder<D>::after_step(const Solver<D>& solver) {
   const auto start = std::chrono::steady_clock::now();
   const long step = solver.steps();
   for (const auto& f : solver.footings())
-    peak_q_ = std::max(peak_q_, f.load() / f.contact_area());
+    peak_bearing_pressure_ = std::max(peak_bearing_pressure_, f.load() / f.contact_area());
   if (step % history_every_ == 0 || step == total_steps_) {
     history_.write(history_row(solver, simple_shear_));
     ++history_rows_;
@@ -293,7 +294,7 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
   s["time_step"] = solver.dt();
   s["dimension"] = D;
   if (!solver.footings().empty())
-    s["peak_q"] = peak_q_;
+    s["peak_q"] = peak_bearing_pressure_;  // the history's "q": bearing pressure
   io::write_json(directory_ + "/summary.json", s);
 }
 

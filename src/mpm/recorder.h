@@ -22,7 +22,7 @@ struct RunTotals {
 };
 
 //! The materials' cost counters added up (DEM RVEs; zero for continuum materials).
-materials::MaterialCost total_cost(const std::vector<std::unique_ptr<materials::Material>>& m);
+materials::MaterialCost total_cost(const MaterialSet& materials);
 
 //! What an MPM run writes into its output folder: history.csv (every `history_every`
 //! steps), results.h5/.xdmf (every `output_every` steps), one progress line per output
@@ -36,7 +36,7 @@ class Recorder {
            long total_steps, const RecorderState* resume = nullptr);
 
   //! What a checkpoint saves.
-  RecorderState state() const { return {history_rows_, peak_q_}; }
+  RecorderState state() const { return {history_rows_, peak_bearing_pressure_}; }
 
   //! Called after every main-stage step (and once before the first).
   void after_step(const Solver<D>& solver);
@@ -65,7 +65,7 @@ class Recorder {
   long last_step_ = 0;
   double last_particle_steps_ = 0.0;
   double output_seconds_ = 0.0;
-  double peak_q_ = 0.0;
+  double peak_bearing_pressure_ = 0.0;
   long history_rows_ = 0;
 };
 

@@ -2,7 +2,6 @@
 
 #include <mpi.h>
 
-#include "coupling/register.h"
 #include "mpm/case_spec.h"
 #include "mpm/driver.h"
 #include "mpm/resources.h"
@@ -16,31 +15,32 @@ namespace {
 //! stresses. Only rank 0 writes files and progress.
 class MpmAnalysis final : public Analysis {
  public:
-  explicit MpmAnalysis(MpmCase c) : case_(std::move(c)) {}
+  explicit MpmAnalysis(MpmProblem problem) : problem_(std::move(problem)) {}
 
   bool supports_resume() const override { return true; }
 
   void check_run(const RunContext& context) const override {
-    check_step_counts(case_);
+    const MpmCase& c = problem_.spec;
+    check_step_counts(c);
     int ranks = 1;
     MPI_Comm_size(context.comm, &ranks);
-    const std::vector<double> points = points_per_material(case_);
+    const std::vector<double> points = points_per_material(c);
     MemoryBudget budget;
-    add_mpm_memory(case_, points, budget);
-    for (std::size_t m = 0; m < case_.materials.size(); ++m)
-      case_.materials[m]->check_run(static_cast<std::size_t>(points[m]), ranks, context.output_dir,
-                                    budget);
+    add_mpm_memory(c, points, budget);
+    for (std::size_t m = 0; m < problem_.materials.size(); ++m)
+      problem_.materials[m]->check_run(static_cast<std::size_t>(points[m]), ranks,
+                                       context.output_dir, budget);
     budget.check(context.comm);
   }
 
   std::vector<std::string> unchecked() const override {
     std::vector<std::string> lines;
-    if (!case_.fixed_time_step && case_.end_steps == 0)
+    if (!problem_.spec.fixed_time_step && problem_.spec.end_steps == 0)
       lines.push_back(
           "analysis.end.time: the step count (1 ... 1e12), which needs the CFL time "
           "step of the prepared materials");
-    for (std::size_t m = 0; m < case_.materials.size(); ++m) {
-      if (case_.materials[m]->has_snapshots())
+    for (std::size_t m = 0; m < problem_.materials.size(); ++m) {
+      if (problem_.materials[m]->has_snapshots())
         lines.push_back("materials[" + std::to_string(m) +
                         "]: the DEM packings (preparation or restart file contents)");
     }
@@ -53,7 +53,7 @@ class MpmAnalysis final : public Analysis {
     const std::string& dir = context.output_dir;
     // Before anything is written or prepared: a resume that could lose results is refused.
     if (context.resume)
-      check_resume(case_, dir, context.comm);
+      check_resume(problem_.spec, dir, context.comm);
     RunOptions options;
     options.run_dir = dir;
     options.write_results = rank == 0;
@@ -62,18 +62,20 @@ class MpmAnalysis final : public Analysis {
     options.comm = context.comm;
     MPI_Comm_size(context.comm, &options.ranks);
     const double start = MPI_Wtime();
-    prepare_materials(case_, context.comm, dir + "/packings");
+    options.hooks = context.hooks;
+    prepare_materials(problem_, context.comm, dir + "/packings", context.hooks);
     options.prior_seconds = MPI_Wtime() - start;
     // A run stopped by a signal has written its checkpoint and said so: it ends normally.
-    if (case_.dimension == 2)
-      run_case<2>(case_, options);
+    // run() is called once: the problem's materials move into the solver.
+    if (problem_.spec.dimension == 2)
+      run_case<2>(std::move(problem_), options);
     else
-      run_case<3>(case_, options);
+      run_case<3>(std::move(problem_), options);
     MPI_Barrier(context.comm);
   }
 
  private:
-  MpmCase case_;
+  MpmProblem problem_;
 };
 
 }  // namespace
@@ -83,13 +85,9 @@ std::unique_ptr<Analysis> make_analysis(const CaseNode& root,
   return std::make_unique<MpmAnalysis>(read_case(root, materials));
 }
 
-void register_analyses(AnalysisRegistry& registry) {
-  registry.add("mpm", [](const CaseNode& root) {
-    materials::MaterialRegistry materials;
-    materials::register_materials(materials);
-    coupling::register_materials(materials);
-    return make_analysis(root, materials);
-  });
+void register_analyses(AnalysisRegistry& registry, materials::MaterialRegistry materials) {
+  auto shared = std::make_shared<const materials::MaterialRegistry>(std::move(materials));
+  registry.add("mpm", [shared](const CaseNode& root) { return make_analysis(root, *shared); });
 }
 
 }  // namespace mpm_lig::mpm

@@ -33,7 +33,7 @@ std::vector<double> points_along_axes(const MpmCase& c, const Body& body) {
 }
 
 std::vector<double> points_per_material(const MpmCase& c) {
-  std::vector<double> points(c.materials.size(), 0.0);
+  std::vector<double> points(c.material_ids.size(), 0.0);
   for (const Body& body : c.bodies) {
     double n = 1.0;
     for (const double along : points_along_axes(c, body))

@@ -48,7 +48,7 @@ RveSnapshots<D>::RveSnapshots(const RveSnapshotOutput& spec, const Solver<D>& so
 }
 
 template <int D>
-void RveSnapshots<D>::after_step(const Solver<D>& solver) {
+void RveSnapshots<D>::after_step(Solver<D>& solver) {
   const long step = solver.steps();
   if (points_.empty())
     return;
@@ -57,7 +57,7 @@ void RveSnapshots<D>::after_step(const Solver<D>& solver) {
 }
 
 template <int D>
-void RveSnapshots<D>::write(const Solver<D>& solver) {
+void RveSnapshots<D>::write(Solver<D>& solver) {
   const Particles<D>& p = solver.particles();
   for (const std::size_t k : points_) {
     const std::filesystem::path folder =

@@ -20,14 +20,15 @@ class RveSnapshots {
   RveSnapshots(const RveSnapshotOutput& spec, const Solver<D>& solver, const std::string& directory,
                long total_steps);
 
-  //! Write the snapshots due after the solver's current step.
-  void after_step(const Solver<D>& solver);
+  //! Collective: write the snapshots due after the solver's current step (a DEM material may
+  //! create its RVEs for that, hence the mutable solver).
+  void after_step(Solver<D>& solver);
 
   //! The material points chosen (one per requested position, in order).
   const std::vector<std::size_t>& points() const { return points_; }
 
  private:
-  void write(const Solver<D>& solver);
+  void write(Solver<D>& solver);
 
   std::string directory_;
   long every_, total_steps_;

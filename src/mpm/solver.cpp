@@ -21,11 +21,19 @@ std::string describe_position(const V& x) {
   return s.str();
 }
 
+//! A solver steps prepared materials only: a DEM material has no packings before prepare().
+MaterialSet require_prepared(MaterialSet materials) {
+  if (!materials.prepared())
+    throw std::logic_error("Solver: the materials are not prepared (MaterialSet::prepare)");
+  return materials;
+}
+
 }  // namespace
 
 template <int D>
-Solver<D>::Solver(MpmCase& c)
-    : grid_(
+Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
+    : materials_(require_prepared(std::move(materials))),
+      grid_(
           Eigen::Map<const Vec>(c.origin.data()), Eigen::Map<const Vec>(c.size.data()),
           [&] {
             std::array<int, D> cells{};
@@ -38,10 +46,9 @@ Solver<D>::Solver(MpmCase& c)
                         periodic.begin());
             return periodic;
           }()),
-      particles_(generate_particles<D>(c)),
+      particles_(generate_particles<D>(c, materials_)),
       shape_(shape_registry().create(c.shape_function)),
       constraints_(c.constraints, grid_),
-      materials_(std::move(c.materials)),
       tractions_(c.tractions),
       gravity_(Eigen::Map<const Vec>(c.gravity.data())),
       musl_(c.musl),
@@ -80,8 +87,10 @@ Solver<D>::Solver(MpmCase& c)
 template <int D>
 double Solver<D>::stable_time_step(const MpmCase& c) const {
   double speed = 0.0;
-  for (const auto& m : materials_)
-    speed = std::max(speed, std::sqrt(m->wave_modulus() / (m->density() * mass_scaling_)));
+  for (std::size_t k = 0; k < materials_.size(); ++k) {
+    const materials::Material& m = *materials_[k];
+    speed = std::max(speed, std::sqrt(m.wave_modulus() / (m.density() * mass_scaling_)));
+  }
   return c.cfl * grid_.min_cell() / speed;
 }
 

@@ -28,8 +28,9 @@ class Solver {
  public:
   using Vec = Eigen::Matrix<double, D, 1>;
 
-  //! Takes the case's materials; `c` keeps the rest of its data.
-  explicit Solver(MpmCase& c);
+  //! A solver for case `c` that owns `materials`, which must be prepared
+  //! (MaterialSet::prepare): their points are added here.
+  Solver(const MpmCase& c, MaterialSet materials);
 
   //! Advance one step of size dt().
   void step();
@@ -49,7 +50,10 @@ class Solver {
   const NodeConstraints<D>& constraints() const { return constraints_; }
   //! Each point's deformation increment dF of the last step (what its material received).
   const std::vector<Mat3>& increments() const { return increments_; }
-  const std::vector<std::unique_ptr<materials::Material>>& materials() const { return materials_; }
+  //! The materials, const through a const solver: their collective and mutating calls
+  //! (checkpoints, snapshots) need the mutable one.
+  const MaterialSet& materials() const { return materials_; }
+  MaterialSet& materials() { return materials_; }
 
   //! For a resumed run: the state a checkpoint overwrites (then restore_clock).
   Particles<D>& mutable_particles() { return particles_; }
@@ -78,12 +82,12 @@ class Solver {
   void smooth_volumetric_strain();
   void update_stress();
 
+  MaterialSet materials_;  // first: the particles are added to it
   Grid<D> grid_;
   Particles<D> particles_;
   std::unique_ptr<ShapeFunction1d> shape_;
   NodeConstraints<D> constraints_;
   std::vector<RigidFooting<D>> footings_;
-  std::vector<std::unique_ptr<materials::Material>> materials_;
   std::vector<Traction> tractions_;
   std::vector<std::vector<std::size_t>> traction_points_;
   Vec gravity_;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/tensor.h"
+
 namespace mpm_lig::mpm {
 namespace {
 
@@ -39,7 +41,7 @@ double TimeFunction::at(double t) const {
     case Kind::square:
       return (phase < 0.25 || phase >= 0.75) ? 1.0 : -1.0;
     case Kind::sine:
-      return std::sin(2.0 * M_PI * phase);
+      return std::sin(2.0 * kPi * phase);
   }
   return 1.0;
 }

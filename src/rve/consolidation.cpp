@@ -35,7 +35,7 @@ Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& s
   Observables now = rve.observe();
   int settled = 0;
   while (steps_left > 0) {
-    const double p = mean_stress(now.stress, dim);
+    const double p = mean_pressure(now.stress, dim);
     // Each axis is driven towards the target on its own, so that the normal stresses end up
     // equal (not only their mean); shear stresses of the fabric are not controlled.
     Mat3 dF = Mat3::Identity();
@@ -52,7 +52,7 @@ Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& s
     rve.deform(dF, kChunk);
     steps_left -= kChunk;
     now = rve.observe();
-    const double p_new = mean_stress(now.stress, dim);
+    const double p_new = mean_pressure(now.stress, dim);
     if (stop_void_ratio > 0.0 && now.void_ratio <= stop_void_ratio &&
         std::abs(p_new - pressure) <= kNearTarget * pressure)
       return now;

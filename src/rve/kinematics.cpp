@@ -31,10 +31,4 @@ Mat3 reduce_tilts(const Mat3& h) {
   return out;
 }
 
-Mat3 hencky_strain(const Mat3& F) {
-  Eigen::SelfAdjointEigenSolver<Mat3> eig(F * F.transpose());
-  const Vec3 log_stretch = 0.5 * eig.eigenvalues().array().log();
-  return eig.eigenvectors() * log_stretch.asDiagonal() * eig.eigenvectors().transpose();
-}
-
 }  // namespace mpm_lig::rve

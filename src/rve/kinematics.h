@@ -19,7 +19,4 @@ BoxStep box_step(const Mat3& dF_rve, const Mat3& h);
 //! (a change of cell basis by integer combinations of the box vectors: no deformation).
 Mat3 reduce_tilts(const Mat3& h);
 
-//! Logarithmic (Hencky) strain ½ ln(F Fᵀ), tension positive.
-Mat3 hencky_strain(const Mat3& F);
-
 }  // namespace mpm_lig::rve

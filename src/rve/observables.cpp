@@ -19,16 +19,6 @@ double Observables::flow_ratio() const {
   return flow_energy > 0.0 ? kinetic_energy / flow_energy : std::numeric_limits<double>::infinity();
 }
 
-double mean_stress(const Mat3& sigma, int dimension) {
-  return dimension == 2 ? -0.5 * (sigma(0, 0) + sigma(1, 1)) : mean_pressure(sigma);
-}
-
-double deviator_stress(const Mat3& sigma, int dimension) {
-  if (dimension == 2)
-    return std::hypot(0.5 * (sigma(0, 0) - sigma(1, 1)), sigma(0, 1));
-  return deviatoric_stress(sigma);
-}
-
 GrainState gather_grains(dem::Engine& engine) {
   auto vec3 = [&](const char* name) {
     const std::vector<double> flat = engine.gather_atoms(name, 3);

@@ -36,11 +36,6 @@ struct Observables {
 inline constexpr double kMaxStepTravel = 0.05;
 inline constexpr double kMaxOverlapRatio = 0.5;
 
-//! Mean stress p (compression positive) of a tension-positive σ: in-plane mean in 2D.
-double mean_stress(const Mat3& sigma, int dimension);
-//! Deviatoric stress q: sqrt(3/2 s:s) in 3D; the Mohr-circle radius in the plane in 2D.
-double deviator_stress(const Mat3& sigma, int dimension);
-
 //! Grain state gathered from an engine, ordered by grain id.
 struct GrainState {
   std::vector<Vec3> x, v, omega;

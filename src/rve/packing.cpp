@@ -8,8 +8,6 @@
 namespace mpm_lig::rve {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 double draw_radius(const RadiusSpec& r, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double u = unit(rng);

@@ -91,7 +91,7 @@ Mat3 Rve::stress() {
   Mat3 sigma_rve = -from_voigt({p[0], p[1], p[2], p[3], p[4], p[5]});
   sigma_rve *= cell_measure(box_matrix(), spec_.dimension) / volume();
   const Mat3 sigma = rotation_ * sigma_rve * rotation_.transpose();
-  last_mean_stress_ = mean_stress(sigma, spec_.dimension);
+  last_mean_stress_ = mean_pressure(sigma, spec_.dimension);
   return sigma;
 }
 

@@ -4,13 +4,12 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/tensor.h"
 #include "dem/file_name.h"
 #include "dem/restart_check.h"
 
 namespace mpm_lig::rve {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string number(double v) {
   std::ostringstream out;

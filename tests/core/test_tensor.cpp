@@ -25,6 +25,27 @@ TEST(Invariants, HydrostaticAndUniaxial) {
   EXPECT_NEAR(deviatoric_stress(uniaxial), 30.0, 1e-12);
 }
 
+TEST(Invariants, InPlaneForDiscPackings) {
+  Mat3 sigma = Mat3::Zero();
+  sigma(0, 0) = -300.0;
+  sigma(1, 1) = -100.0;
+  sigma(0, 1) = sigma(1, 0) = 50.0;
+  sigma(2, 2) = -7.0;  // out of plane: ignored in 2D
+  EXPECT_DOUBLE_EQ(mean_pressure(sigma, 2), 200.0);
+  EXPECT_DOUBLE_EQ(deviatoric_stress(sigma, 2), std::hypot(100.0, 50.0));
+  EXPECT_DOUBLE_EQ(mean_pressure(sigma, 3), mean_pressure(sigma));
+}
+
+TEST(HenckyStrain, LogOfPrincipalStretchesAndFiniteWhenDegenerate) {
+  const Mat3 stretch = Vec3(2.0, 1.0, 0.5).asDiagonal();
+  const Mat3 q = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  // A rotation after the stretch (F = Q U) leaves ln V = Q ln U Qᵀ.
+  const Mat3 expected = q * Vec3(std::log(2.0), 0.0, std::log(0.5)).asDiagonal() * q.transpose();
+  EXPECT_TRUE(hencky_strain(q * stretch).isApprox(expected, 1e-12));
+  EXPECT_NEAR(deviatoric_strain(hencky_strain(Mat3::Identity() * 1.1)), 0.0, 1e-14);
+  EXPECT_TRUE(hencky_strain(Mat3::Zero()).allFinite());
+}
+
 TEST(CsvHistory, WritesHeaderAndExactRows) {
   const std::string file = ::testing::TempDir() + "/history_test.csv";
   {

@@ -81,7 +81,7 @@ TEST(DemRveCoupling, OnePointEqualsElementTestOnAClone) {
   document.root().child("analysis").choice("type", {"mpm"});
   materials::MaterialRegistry registry;
   coupling::register_materials(registry);
-  mpm::MpmCase c = mpm::read_case(document.root(), registry);
+  mpm::MpmProblem c = mpm::read_case(document.root(), registry);
   document.check_all_used();
   mpm::prepare_materials(c, MPI_COMM_SELF, dir);
   const auto& material = dynamic_cast<const DemRveMaterial&>(*c.materials[0]);
@@ -89,7 +89,7 @@ TEST(DemRveCoupling, OnePointEqualsElementTestOnAClone) {
   const rve::RveSpec spec = material.spec();
 
   std::vector<Mat3> increments, stresses;
-  mpm::run_case<2>(c, "", [&](const mpm::Solver<2>& s) {
+  mpm::run_case<2>(std::move(c), "", [&](const mpm::Solver<2>& s) {
     ASSERT_EQ(s.particles().size(), 1u);
     increments.push_back(s.increments()[0]);
     stresses.push_back(s.particles().stress[0]);

@@ -84,6 +84,6 @@ TEST(HardHealth, DISABLED_PackingWithoutContactsIsHealthy) {
     now = rve->observe();
     ASSERT_NO_THROW(rve->check_health(now)) << "increment " << k;
   }
-  EXPECT_LT(rve::mean_stress(now.stress, 2), 1.0);  // Pa: every contact open
+  EXPECT_LT(mean_pressure(now.stress, 2), 1.0);  // Pa: every contact open
   EXPECT_EQ(now.grains, spec.grains);
 }

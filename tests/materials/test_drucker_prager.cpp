@@ -11,7 +11,6 @@ namespace {
 using testing::step;
 using Match = DruckerPragerCone::Match;
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
 const Elasticity kElastic = Elasticity::from_moduli(20e6, 0.3);
 
 TEST(DruckerPrager, PlaneStrainMatchGivesMohrCoulombPlaneStrainStrength) {

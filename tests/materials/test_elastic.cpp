@@ -101,7 +101,7 @@ TEST(LinearElastic, RigidRotationRotatesTheStressAndKeepsItsInvariants) {
     m.add_points(3);
     m.set_stress(1, sigma);
     const int steps = 1000;
-    const double quarter = 0.5 * 3.14159265358979323846;
+    const double quarter = 0.5 * kPi;
     const Mat3 increment = rotation(axis, quarter / steps);
     Mat3 s;
     for (int i = 0; i < steps; ++i)

@@ -13,7 +13,6 @@ namespace {
 using testing::rotation;
 using testing::step;
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
 const Elasticity kElastic = Elasticity::from_moduli(20e6, 0.3);
 
 //! Isochoric pure shear in the xy plane without spin (principal stretches e^±γ/2 at 45°):
@@ -244,10 +243,10 @@ TEST(MohrCoulomb, RigidRotationOfAYieldingPointChangesNothingButTheAxes) {
   for (int i = 0; i < 100; ++i)  // shear it to failure first
     s0 = step(m, 0, pure_shear(1e-4));
   const double plastic = m.state(0, 0);
-  const Mat3 q = rotation(Vec3(0, 0, 1), 0.5 * 3.14159265358979323846);
+  const Mat3 q = rotation(Vec3(0, 0, 1), 0.5 * kPi);
   Mat3 s;
   for (int i = 0; i < 500; ++i)
-    s = step(m, 0, rotation(Vec3(0, 0, 1), 0.5 * 3.14159265358979323846 / 500));
+    s = step(m, 0, rotation(Vec3(0, 0, 1), 0.5 * kPi / 500));
   EXPECT_LT((s - q * s0 * q.transpose()).norm(), 1e-9 * s0.norm());
   // Round-off in dF − I (1e-16 × 2G per step) may nudge f past its 1e-12 tolerance: the
   // plastic strain may change by round-off, not more.

@@ -17,7 +17,7 @@ const materials::MaterialRegistry& material_registry() {
   return registry;
 }
 
-MpmCase load_case(const std::string& name, const std::function<void(nlohmann::json&)>& edit) {
+MpmProblem load_case(const std::string& name, const std::function<void(nlohmann::json&)>& edit) {
   const std::string path = std::string(MPM_LIG_SOURCE_DIR) + "/cases/mpm/" + name + ".json";
   std::ifstream in(path);
   if (!in)
@@ -28,7 +28,7 @@ MpmCase load_case(const std::string& name, const std::function<void(nlohmann::js
   const auto document = CaseDocument::parse(j.dump());
   const CaseNode root = document.root();
   root.child("analysis").choice("type", {"mpm"});
-  MpmCase c = read_case(root, material_registry());
+  MpmProblem c = read_case(root, material_registry());
   document.check_all_used();
   return c;
 }

@@ -15,6 +15,7 @@ const materials::MaterialRegistry& material_registry();
 
 //! Read cases/mpm/<name>.json, let `edit` change the JSON (refinement, shorter runs), and
 //! validate it exactly as `mpm_lig` does (unknown keys included).
-MpmCase load_case(const std::string& name, const std::function<void(nlohmann::json&)>& edit = {});
+MpmProblem load_case(const std::string& name,
+                     const std::function<void(nlohmann::json&)>& edit = {});
 
 }  // namespace mpm_lig::mpm::testing

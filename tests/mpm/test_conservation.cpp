@@ -23,7 +23,7 @@ std::string name_of(const ::testing::TestParamInfo<Variant>& info) {
 }
 
 //! The free-flight case, in 3D when asked (a slab in z), with the variant's scheme.
-MpmCase free_flight(const Variant& v, bool rigid) {
+MpmProblem free_flight(const Variant& v, bool rigid) {
   return testing::load_case("free_flight", [&](nlohmann::json& j) {
     j["analysis"]["shape_function"] = v.shape;
     j["analysis"]["scheme"] = v.scheme;
@@ -46,11 +46,11 @@ MpmCase free_flight(const Variant& v, bool rigid) {
 class FreeFlight : public ::testing::TestWithParam<Variant> {};
 
 template <int D>
-void check_rigid_translation(MpmCase c) {
+void check_rigid_translation(MpmProblem c) {
   const Eigen::Matrix<double, D, 1> v =
-      Eigen::Map<const Eigen::Matrix<double, D, 1>>(c.bodies[0].velocity.data());
+      Eigen::Map<const Eigen::Matrix<double, D, 1>>(c.spec.bodies[0].velocity.data());
   double moved = 0.0;
-  run_case<D>(c, "", [&](const Solver<D>& s) {
+  run_case<D>(std::move(c), "", [&](const Solver<D>& s) {
     const auto& p = s.particles();
     for (std::size_t k = 0; k < p.size(); ++k) {
       // Exact up to round-off (gradients of order 1/h summed over 4-27 nodes each step).
@@ -72,11 +72,11 @@ TEST_P(FreeFlight, RigidTranslationIsExact) {
 }
 
 template <int D>
-void check_conservation(MpmCase c) {
+void check_conservation(MpmProblem c) {
   double mass0 = -1.0;
   Eigen::Matrix<double, D, 1> momentum0;
   double max_strain = 0.0;
-  run_case<D>(c, "", [&](const Solver<D>& s) {
+  run_case<D>(std::move(c), "", [&](const Solver<D>& s) {
     if (mass0 < 0.0) {
       mass0 = s.total_mass();
       momentum0 = s.total_momentum();

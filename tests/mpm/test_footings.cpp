@@ -21,13 +21,13 @@ struct LoadCurve {
 
 //! Runs case `name` (with other shape functions if `shape` is given).
 LoadCurve run_footing(const std::string& name, const std::string& shape = "") {
-  MpmCase c = testing::load_case(name, [&](nlohmann::json& j) {
+  MpmProblem c = testing::load_case(name, [&](nlohmann::json& j) {
     j["output"]["fields"] = false;
     if (!shape.empty())
       j["analysis"]["shape_function"] = shape;
   });
   LoadCurve curve;
-  run_case<2>(c, "", [&](const Solver<2>& s) {
+  run_case<2>(std::move(c), "", [&](const Solver<2>& s) {
     const auto& f = s.footings().front();
     curve.settlement_ratio.push_back(f.settlement() / kWidth);
     curve.q.push_back(f.load() / f.contact_area());
@@ -68,13 +68,13 @@ void check_collapse_load(const std::string& name, double lo, double hi, double u
 
 TEST(Footing, PrandtlOnTrescaSoil) {
   // q_u = (2 + pi) c_u, c_u = 10 kPa.
-  check_collapse_load("prandtl_tresca", 0.015, 0.03, 1.0e4, 2.0 + M_PI, 0.05);
+  check_collapse_load("prandtl_tresca", 0.015, 0.03, 1.0e4, 2.0 + kPi, 0.05);
 }
 
 TEST(Footing, VesicNqOnWeightlessMohrCoulombSoil) {
   // q_u = N_q q0, q0 = 10 kPa, N_q = tan^2(pi/4 + phi/2) exp(pi tan phi), phi = 28.1 deg.
-  const double phi = 28.1 * M_PI / 180.0;
-  const double nq = std::pow(std::tan(M_PI / 4 + phi / 2), 2) * std::exp(M_PI * std::tan(phi));
+  const double phi = 28.1 * kPi / 180.0;
+  const double nq = std::pow(std::tan(kPi / 4 + phi / 2), 2) * std::exp(kPi * std::tan(phi));
   check_collapse_load("vesic_mohr_coulomb", 0.015, 0.03, 1.0e4, nq, 0.15);
 }
 
@@ -101,7 +101,7 @@ double worst_spike(const LoadCurve& curve, double qu) {
 
 TEST(Footing, LargePenetrationWithGimpIsSmooth) {
   // A point leaving the mesh or a non-finite position ends the run with an exception.
-  const double qu = (2.0 + M_PI) * 1.0e4;
+  const double qu = (2.0 + kPi) * 1.0e4;
   const LoadCurve gimp = run_footing("footing_large_penetration");
   ASSERT_GE(gimp.settlement_ratio.back(), 1.5);
   EXPECT_TRUE(gimp.finite);
@@ -146,12 +146,12 @@ TEST(Footing, ThreeDimensionalSlabMatchesPlaneStrain) {
     j["rigid_bodies"][0]["width"] = {1.0, 0.1};
   };
   std::vector<double> q2, q3;
-  MpmCase c2 = testing::load_case("prandtl_tresca", coarse);
-  run_case<2>(c2, "", [&](const Solver<2>& s) {
+  MpmProblem c2 = testing::load_case("prandtl_tresca", coarse);
+  run_case<2>(std::move(c2), "", [&](const Solver<2>& s) {
     q2.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
   });
-  MpmCase c3 = testing::load_case("prandtl_tresca", slab);
-  run_case<3>(c3, "", [&](const Solver<3>& s) {
+  MpmProblem c3 = testing::load_case("prandtl_tresca", slab);
+  run_case<3>(std::move(c3), "", [&](const Solver<3>& s) {
     q3.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
   });
   ASSERT_EQ(q2.size(), q3.size());

@@ -19,7 +19,7 @@ using Vec2 = Eigen::Vector2d;
 class Periodic : public ::testing::TestWithParam<std::string> {};
 
 //! The free-flight block on a mesh periodic along x, fast enough to cross the seam twice.
-MpmCase periodic_flight(const std::string& shape, bool rigid) {
+MpmProblem periodic_flight(const std::string& shape, bool rigid) {
   return testing::load_case("free_flight", [&](nlohmann::json& j) {
     j["analysis"]["shape_function"] = shape;
     j["analysis"]["end"]["steps"] = 800;
@@ -33,11 +33,11 @@ MpmCase periodic_flight(const std::string& shape, bool rigid) {
 }
 
 TEST_P(Periodic, RigidBlockCrossesTheSeamUnchanged) {
-  MpmCase c = periodic_flight(GetParam(), true);
-  const double length = c.size[0];
+  MpmProblem c = periodic_flight(GetParam(), true);
+  const double length = c.spec.size[0];
   const Vec2 v(4.0, 0.2);
   double travelled = 0.0;
-  run_case<2>(c, "", [&](const Solver<2>& s) {
+  run_case<2>(std::move(c), "", [&](const Solver<2>& s) {
     const auto& p = s.particles();
     for (std::size_t k = 0; k < p.size(); ++k) {
       ASSERT_GE(p.position[k][0], 0.0);
@@ -54,12 +54,12 @@ TEST_P(Periodic, RigidBlockCrossesTheSeamUnchanged) {
 }
 
 TEST_P(Periodic, VibratingBlockKeepsMassAndMomentumAcrossTheSeam) {
-  MpmCase c = periodic_flight(GetParam(), false);
+  MpmProblem c = periodic_flight(GetParam(), false);
   double mass0 = -1.0;
   Vec2 momentum0 = Vec2::Zero();
   int seam_crossings = 0;
   std::vector<double> previous;
-  run_case<2>(c, "", [&](const Solver<2>& s) {
+  run_case<2>(std::move(c), "", [&](const Solver<2>& s) {
     const auto& p = s.particles();
     double mass = 0.0;
     Vec2 momentum = Vec2::Zero();
@@ -87,19 +87,19 @@ INSTANTIATE_TEST_SUITE_P(Shapes, Periodic, ::testing::Values("linear", "gimp"));
 class PeriodicShear : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(PeriodicShear, LayerCarriesTheClosedFormSimpleShear) {
-  MpmCase c = testing::load_case("periodic_simple_shear", [&](nlohmann::json& j) {
+  MpmProblem c = testing::load_case("periodic_simple_shear", [&](nlohmann::json& j) {
     j["analysis"]["shape_function"] = GetParam();
     j["output"]["fields"] = false;
   });
-  const double height = c.size[1];
-  const auto& top = c.constraints[2];
+  const double height = c.spec.size[1];
+  const auto& top = c.spec.constraints[2];
   // Triangular pulse over half a period: the top row moved by v_max T / 4.
   const double gamma = top.velocity * top.function.time / 4.0 / height;
   const double e = 1.0e7, nu = 0.3, g = e / (2.0 * (1.0 + nu));
   const Solver<2>* last = nullptr;
   std::vector<Mat3> stress;
   std::vector<Vec2> displacement, reference;
-  run_case<2>(c, "", [&](const Solver<2>& s) {
+  run_case<2>(std::move(c), "", [&](const Solver<2>& s) {
     last = &s;
     const auto& p = s.particles();
     stress = p.stress;

@@ -10,6 +10,7 @@
 #include "rve/consolidation.h"
 #include "rve/kinematics.h"
 #include "rve/rve.h"
+#include "test_rve_spec.h"
 
 using namespace mpm_lig;
 
@@ -17,19 +18,12 @@ namespace {
 
 constexpr double kPressure = 1e5;
 
-std::string spec_json(const std::string& engine, int dimension, int grains) {
-  return R"({"rve": {"engine": ")" + engine + R"(", "dimension": )" + std::to_string(dimension) +
-         R"(, "grains": )" + std::to_string(grains) +
-         R"(, "radius": {"min": 0.003, "max": 0.007}, "density": 2650, "seed": 3,
-      "contact": {"youngs_modulus": 7e8, "poisson_ratio": 0.3, "friction": 0.5,
-                  "damping_ratio": 0.1},
-      "time_step_fraction": 0.15, "preparation": {"confining_pressure": 1e5},
-      "substeps": {"fixed": 50}}})";
-}
-
 rve::RveSpec make_spec(const std::string& engine, int dimension, int grains) {
-  const auto doc = CaseDocument::parse(spec_json(engine, dimension, grains));
-  return rve::parse_rve_spec(doc.root().child("rve"));
+  nlohmann::json rve = test::small_rve_json();
+  rve["engine"] = engine;
+  rve["dimension"] = dimension;
+  rve["grains"] = grains;
+  return test::parse_rve(rve);
 }
 
 Mat3 rotation_z(double angle) {
@@ -67,11 +61,11 @@ std::string RveTest::restart_;
 }  // namespace
 
 TEST_F(RveTest, ConsolidationReachesTargetPressureAtRest) {
-  const double p = rve::mean_stress(result_.final.stress, 2);
+  const double p = mean_pressure(result_.final.stress, 2);
   EXPECT_NEAR(p, kPressure, 0.02 * kPressure);
   EXPECT_LT(result_.final.kinetic_ratio(), 0.01);
   // Isotropic: the deviator is small against p for a consolidated packing.
-  EXPECT_LT(rve::deviator_stress(result_.final.stress, 2), 0.1 * p);
+  EXPECT_LT(deviatoric_stress(result_.final.stress, 2), 0.1 * p);
   EXPECT_GT(result_.final.coordination_number, 2.5);
   // The clone reads the state back (a restart re-evaluates the contact forces once).
   auto c = clone();
@@ -84,18 +78,18 @@ TEST_F(RveTest, RigidRotationRotatesStressAndKeepsInvariants) {
     auto r = clone();
     auto still = clone();  // the same packing left alone for as many steps (slow creep)
     const int increments = static_cast<int>(total_deg / 5.0);
-    const double step = total_deg / increments * M_PI / 180.0;
+    const double step = total_deg / increments * kPi / 180.0;
     for (int k = 0; k < increments; ++k) {
       r->deform(rotation_z(step), 20);
       still->relax(20);
     }
     const Mat3 s0 = still->stress();
     const Mat3 s = r->stress();
-    const Mat3 q = rotation_z(total_deg * M_PI / 180.0);
+    const Mat3 q = rotation_z(total_deg * kPi / 180.0);
     const Mat3 expected = q * s0 * q.transpose();
-    const double p0 = rve::mean_stress(s0, 2);
-    EXPECT_NEAR(rve::mean_stress(s, 2), p0, 0.01 * p0) << total_deg;
-    EXPECT_NEAR(rve::deviator_stress(s, 2), rve::deviator_stress(s0, 2), 0.01 * p0) << total_deg;
+    const double p0 = mean_pressure(s0, 2);
+    EXPECT_NEAR(mean_pressure(s, 2), p0, 0.01 * p0) << total_deg;
+    EXPECT_NEAR(deviatoric_stress(s, 2), deviatoric_stress(s0, 2), 0.01 * p0) << total_deg;
     EXPECT_LT((s - expected).norm(), 0.01 * p0) << total_deg << "\n" << s << "\n" << expected;
     // The box itself never rotated: the rotation lives outside it.
     EXPECT_LT((r->box_matrix() - clone()->box_matrix()).norm(), 1e-9);
@@ -116,7 +110,7 @@ TEST_F(RveTest, SimpleShearToHundredPercentFlipsTheCellAndLosesNothing) {
   EXPECT_NO_THROW(r->check_health(o));
   const Mat3 h = r->box_matrix();
   EXPECT_LE(std::abs(h(0, 1)), 0.5 * h(0, 0) + 0.02 * h(1, 1));  // the cell basis was reduced
-  EXPECT_GT(rve::mean_stress(o.stress, 2), 0.0);                 // still a packing under load
+  EXPECT_GT(mean_pressure(o.stress, 2), 0.0);                    // still a packing under load
 }
 
 TEST_F(RveTest, CloneIsBitIdenticalToItsOriginalAfterTheSameDeformation) {
@@ -179,15 +173,15 @@ TEST(RveStreaming, RigidRotationAboutObliqueAxisGivesNoSpuriousStress) {
   auto still = rve::Rve::from_restart(spec, file, MPI_COMM_WORLD, "still");
   const Vec3 axis = Vec3(1.0, 2.0, 3.0).normalized();
   const int increments = 18;
-  const Mat3 step = Eigen::AngleAxisd(M_PI / 2 / increments, axis).toRotationMatrix();
+  const Mat3 step = Eigen::AngleAxisd(kPi / 2 / increments, axis).toRotationMatrix();
   for (int k = 0; k < increments; ++k) {
     r->deform(step, 20);
     still->relax(20);
   }
-  const Mat3 q = Eigen::AngleAxisd(M_PI / 2, axis).toRotationMatrix();
+  const Mat3 q = Eigen::AngleAxisd(kPi / 2, axis).toRotationMatrix();
   const Mat3 s0 = still->stress(), s = r->stress();
-  const double p0 = rve::mean_stress(s0, 3);
-  EXPECT_NEAR(rve::mean_stress(s, 3), p0, 0.01 * p0);
-  EXPECT_NEAR(rve::deviator_stress(s, 3), rve::deviator_stress(s0, 3), 0.01 * p0);
+  const double p0 = mean_pressure(s0, 3);
+  EXPECT_NEAR(mean_pressure(s, 3), p0, 0.01 * p0);
+  EXPECT_NEAR(deviatoric_stress(s, 3), deviatoric_stress(s0, 3), 0.01 * p0);
   EXPECT_LT((s - q * s0 * q.transpose()).norm(), 0.01 * p0);
 }

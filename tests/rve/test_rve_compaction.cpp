@@ -10,6 +10,7 @@
 #include "core/case_node.h"
 #include "rve/consolidation.h"
 #include "rve/rve.h"
+#include "test_rve_spec.h"
 
 using namespace mpm_lig;
 
@@ -50,7 +51,7 @@ TEST(RveCompaction, ReachesTargetVoidRatioAndRestoresFriction) {
   // Compaction stages stop as the void ratio crosses the upper half of the band;
   // re-consolidating with the real friction moves it by a few 1e-3 at most.
   EXPECT_NEAR(c.final.void_ratio, target, spec.preparation.void_ratio_tolerance);
-  EXPECT_NEAR(rve::mean_stress(c.final.stress, 2), kPressure,
+  EXPECT_NEAR(mean_pressure(c.final.stress, 2), kPressure,
               spec.preparation.tolerance * kPressure);
   EXPECT_LT(c.final.kinetic_ratio(), 0.01);
   // Friction restored: a denser packing with the real friction is at least as strong in
@@ -62,8 +63,8 @@ TEST(RveCompaction, ReachesTargetVoidRatioAndRestoresFriction) {
     dense->deform(shear);
   }
   const Mat3 s_ref = reference->stress(), s_dense = dense->stress();
-  EXPECT_GT(rve::deviator_stress(s_dense, 2) / rve::mean_stress(s_dense, 2),
-            0.9 * rve::deviator_stress(s_ref, 2) / rve::mean_stress(s_ref, 2));
+  EXPECT_GT(deviatoric_stress(s_dense, 2) / mean_pressure(s_dense, 2),
+            0.9 * deviatoric_stress(s_ref, 2) / mean_pressure(s_ref, 2));
 }
 
 // 3D (60 spheres), target 0.03 below the full-friction void ratio: the staged compaction does
@@ -86,7 +87,7 @@ TEST(RveCompaction, TargetVoidRatioIn3dReachedOrRefused) {
   EXPECT_EQ(c.void_ratio_reached,
             std::abs(c.void_ratio_error) <= spec.preparation.void_ratio_tolerance);
   EXPECT_LT(c.final.void_ratio, full - 0.01);  // compacted well below the full-friction value
-  EXPECT_NEAR(rve::mean_stress(c.final.stress, 3), kPressure,
+  EXPECT_NEAR(mean_pressure(c.final.stress, 3), kPressure,
               spec.preparation.tolerance * kPressure);
   if (c.void_ratio_reached)
     EXPECT_NO_THROW(rve::require_void_ratio(*dense, c));

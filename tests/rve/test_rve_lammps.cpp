@@ -7,20 +7,18 @@
 #include "core/case_node.h"
 #include "rve/consolidation.h"
 #include "rve/rve.h"
+#include "test_rve_spec.h"
 
 using namespace mpm_lig;
 
 namespace {
 
 rve::RveSpec lammps_spec(int dimension) {
-  const auto doc = CaseDocument::parse(R"({"rve": {"engine": "lammps", "dimension": )" +
-                                       std::to_string(dimension) + R"(,
-      "grains": 100, "radius": {"min": 0.003, "max": 0.007}, "density": 2650, "seed": 5,
-      "contact": {"youngs_modulus": 7e8, "poisson_ratio": 0.3, "friction": 0.5,
-                  "damping_ratio": 0.1},
-      "time_step_fraction": 0.15, "preparation": {"confining_pressure": 1e5},
-      "substeps": {"fixed": 50}}})");
-  return rve::parse_rve_spec(doc.root().child("rve"));
+  nlohmann::json rve = test::small_rve_json();
+  rve["engine"] = "lammps";
+  rve["dimension"] = dimension;
+  rve["seed"] = 5;
+  return test::parse_rve(rve);
 }
 
 //! Compress a fresh packing until it carries load, shear it, compare the engine's virial
@@ -31,14 +29,14 @@ void expect_stress_equals_contact_sum(int dimension) {
   Mat3 dF = Mat3::Identity() * (1.0 - 2e-3);
   if (dimension == 2)
     dF(2, 2) = 1.0;
-  for (int k = 0; k < 400 && rve::mean_stress(r->stress(), dimension) < 2e4; ++k)
+  for (int k = 0; k < 400 && mean_pressure(r->stress(), dimension) < 2e4; ++k)
     r->deform(dF, 50);
   Mat3 shear = Mat3::Identity();
   shear(0, dimension - 1) = 2e-3;
   r->deform(shear, 100);
   r->engine().command("run 0");  // virial and contact list of the same force evaluation
   const Mat3 s = r->stress();
-  ASSERT_GT(rve::mean_stress(s, dimension), 1e3);
+  ASSERT_GT(mean_pressure(s, dimension), 1e3);
   const auto contacts = r->engine().contacts();
   ASSERT_GT(contacts.size(), static_cast<std::size_t>(spec.grains / 2));
   const Mat3 from_contacts = rve::contact_stress(contacts, r->volume());
@@ -63,7 +61,7 @@ TEST(RveLammps, ConsolidatesIn2dAndReadsContactsRightAfterDeforming) {
   const rve::RveSpec spec = lammps_spec(2);
   auto r = rve::Rve::generate(spec, MPI_COMM_WORLD, "lammps RVE");
   const rve::ConsolidationResult c = rve::consolidate(*r);
-  const double p = rve::mean_stress(c.final.stress, 2);
+  const double p = mean_pressure(c.final.stress, 2);
   EXPECT_NEAR(p, 1e5, 0.02 * 1e5);
   EXPECT_LT(c.final.kinetic_ratio(), 0.01);
   EXPECT_GT(c.final.coordination_number, 2.5);

@@ -6,20 +6,17 @@
 
 #include "core/case_node.h"
 #include "rve/rve.h"
+#include "test_rve_spec.h"
 
 using namespace mpm_lig;
 
 namespace {
 
 rve::RveSpec spec_for(int seed) {
-  const auto doc = CaseDocument::parse(R"({"rve": {"dimension": 2, "grains": 80,
-      "radius": {"min": 0.003, "max": 0.007}, "density": 2650, "seed": )" +
-                                       std::to_string(seed) + R"(,
-      "contact": {"youngs_modulus": 7e8, "poisson_ratio": 0.3, "friction": 0.5,
-                  "damping_ratio": 0.1},
-      "time_step_fraction": 0.15, "preparation": {"confining_pressure": 1e5},
-      "substeps": {"fixed": 50}}})");
-  return rve::parse_rve_spec(doc.root().child("rve"));
+  nlohmann::json rve = test::small_rve_json();
+  rve["grains"] = 80;
+  rve["seed"] = seed;
+  return test::parse_rve(rve);
 }
 
 //! Compress a fresh packing into contact, then shear it; returns the stress (Voigt).
@@ -27,7 +24,7 @@ Voigt6 drive(int seed, MPI_Comm comm) {
   auto r = rve::Rve::generate(spec_for(seed), comm, "RVE " + std::to_string(seed));
   Mat3 squeeze = Mat3::Identity() * (1.0 - 1e-3);
   squeeze(2, 2) = 1.0;
-  for (int k = 0; k < 300 && rve::mean_stress(r->stress(), 2) < 5e4; ++k)
+  for (int k = 0; k < 300 && mean_pressure(r->stress(), 2) < 5e4; ++k)
     r->deform(squeeze);
   Mat3 shear = Mat3::Identity();
   shear(0, 1) = 1e-3;

@@ -1,0 +1,20 @@
+#pragma once
+
+namespace mpm_lig {
+
+//! Fault injection for the tests of the failure and resume paths. Read once from the
+//! environment when the program starts and handed down explicitly: nothing reads the
+//! environment while a run is stepping.
+struct TestHooks {
+  //! MPM_LIG_KILL_AT_STEP=n: rank 0 kills itself with SIGKILL after MPM step n is recorded.
+  long kill_at_step = -1;
+  //! MPM_LIG_FAULT_POINT=i: the rank owning dem_rve point i sends its engine an unknown command.
+  long fault_point = -1;
+  //! MPM_LIG_FAULT_UPDATE=u: ... at the u-th update of that material (default 1).
+  long fault_update = 1;
+
+  //! The hooks the environment asks for (none when the variables are not set).
+  static TestHooks from_environment();
+};
+
+}  // namespace mpm_lig
