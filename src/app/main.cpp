@@ -109,6 +109,18 @@ std::unique_ptr<mpm_lig::Analysis> load_analysis(const std::string& case_file) {
   return analysis;
 }
 
+//! Whether `a` and `b` name one folder; a name the system cannot resolve (too long, a loop
+//! of links) sets `refusal` and gives false.
+bool same_folder(const std::string& a, const std::string& b, std::string& refusal) {
+  namespace fs = std::filesystem;
+  try {
+    return fs::weakly_canonical(a) == fs::weakly_canonical(b);
+  } catch (const fs::filesystem_error& e) {
+    refusal = "--output " + a + " / --resume " + b + ": " + e.code().message();
+    return false;
+  }
+}
+
 //! The one rule for the folder a run writes to: --output DIR, else for a resumed run the
 //! folder it resumes from (which must exist: nothing is created for a resume), else
 //! ./<case name>_out. Refused (a message for the user): an empty name, and --output naming
@@ -120,10 +132,10 @@ std::string run_directory(const CommandLine& cl, std::string& refusal) {
     refusal = "--output: the folder name is empty";
   else if (cl.resume_dir && cl.resume_dir->empty())
     refusal = "--resume: the folder name is empty";
-  else if (cl.resume_dir && !fs::is_directory(*cl.resume_dir))
+  else if (std::error_code ignored; cl.resume_dir && !fs::is_directory(*cl.resume_dir, ignored))
     refusal = "--resume " + *cl.resume_dir + ": no such folder";
   else if (cl.resume_dir && cl.output_dir &&
-           fs::weakly_canonical(*cl.output_dir) != fs::weakly_canonical(*cl.resume_dir))
+           !same_folder(*cl.output_dir, *cl.resume_dir, refusal) && refusal.empty())
     refusal = "--output " + *cl.output_dir + " and --resume " + *cl.resume_dir +
               " name different folders: a resumed run continues in the folder it resumes "
               "from (copy that folder first to keep it unchanged)";

@@ -8,6 +8,8 @@ namespace mpm_lig {
 struct TestHooks {
   //! MPM_LIG_KILL_AT_STEP=n: rank 0 kills itself with SIGKILL after MPM step n is recorded.
   long kill_at_step = -1;
+  //! MPM_LIG_TERM_AT_STEP=n: rank 0 sends itself SIGTERM after MPM step n (a signal in that step).
+  long term_at_step = -1;
   //! MPM_LIG_FAULT_POINT=i: the rank owning dem_rve point i sends its engine an unknown command.
   long fault_point = -1;
   //! MPM_LIG_FAULT_UPDATE=u: ... at the u-th update of that material (default 1).

@@ -1,5 +1,6 @@
 #include "dem/restart_check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -61,6 +62,27 @@ bool ends_with_chunks(const Bytes& bytes, std::size_t begin, std::size_t end, lo
   return false;
 }
 
+//! The atom count the header declares (its NATOMS record), or -1 when the header cannot be
+//! walked up to it. Records: an int flag, then a value whose type the flag fixes (LIGGGHTS
+//! 3.8: 0 VERSION, 4 UNITS and 22 ATOM_STYLE strings, 5 NTIMESTEP bigint, the rest int, 23
+//! NATOMS bigint).
+long declared_atoms(const Bytes& bytes, std::size_t offset) {
+  constexpr std::int32_t kNtimestep = 5, kAtomStyle = 22, kNatoms = 23;
+  for (std::int32_t expected = 1; offset + 12 <= bytes.size(); ++expected) {
+    const std::int32_t flag = value_at<std::int32_t>(bytes, offset);
+    if (flag != expected)
+      return -1;
+    offset += 4;
+    if (flag == kNatoms)
+      return static_cast<long>(value_at<std::int64_t>(bytes, offset));
+    if (flag == 4 || flag == kAtomStyle)
+      offset += 4 + static_cast<std::size_t>(std::max(0, value_at<std::int32_t>(bytes, offset)));
+    else
+      offset += flag == kNtimestep ? 8 : 4;
+  }
+  return -1;
+}
+
 std::string liggghts_problem(const Bytes& bytes, long atoms) {
   if (bytes.size() < 8 || value_at<std::int32_t>(bytes, 0) != kVersionRecord)
     return "not a LIGGGHTS restart file (no version record at its start)";
@@ -71,6 +93,10 @@ std::string liggghts_problem(const Bytes& bytes, long atoms) {
       bytes[7 + static_cast<std::size_t>(length)] != '\0')
     return "not a LIGGGHTS restart file (its version record is not LIGGGHTS')";
   const std::size_t header = 8 + static_cast<std::size_t>(length);
+  // A file of another packing is named as such, not taken for a damaged one.
+  const long declared = declared_atoms(bytes, header);
+  if (atoms > 0 && declared >= 0 && declared != atoms)
+    return "holds " + std::to_string(declared) + " grains, grains says " + std::to_string(atoms);
   if (atoms > 0 && !ends_with_chunks(bytes, header, bytes.size(), atoms, 0))
     return "incomplete or damaged: it does not end with the records of " + std::to_string(atoms) +
            " grains (truncated, e.g. written to a full disk?)";

@@ -9,7 +9,8 @@ std::string member_path(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
 }
 
-//! `path` with every "[<digits>]" replaced by "[*]".
+//! `path` with every "[<digits>]" replaced by "[*]" (a '[' without ']', as a key may hold,
+//! ends the replacing).
 std::string generic(const std::string& path) {
   std::string out;
   for (std::size_t k = 0; k < path.size(); ++k) {
@@ -17,10 +18,17 @@ std::string generic(const std::string& path) {
     if (path[k] != '[')
       continue;
     const std::size_t close = path.find(']', k);
+    if (close == std::string::npos)
+      return out + path.substr(k + 1);
     out += "*]";
     k = close;
   }
   return out;
+}
+
+//! Keys starting with '_' are comments: the case reader ignores them.
+bool comment_key(const std::string& key) {
+  return !key.empty() && key[0] == '_';
 }
 
 bool safe(const std::string& path) {
@@ -41,6 +49,8 @@ void collect(const nlohmann::json& a, const nlohmann::json& b, const std::string
     for (auto it = b.begin(); it != b.end(); ++it)
       keys.insert(it.key());
     for (const std::string& key : keys) {
+      if (comment_key(key))
+        continue;
       const std::string p = member_path(path, key);
       // A key given on one side only: its leaves are what differs.
       const nlohmann::json none = (a.contains(key) ? a[key] : b[key]).is_object()

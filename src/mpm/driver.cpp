@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "core/case_error.h"
 #include "core/resources.h"
@@ -42,12 +43,28 @@ bool stop_requested(MPI_Comm comm) {
 }
 
 //! A new run in a folder that holds an earlier run's checkpoint: that checkpoint goes, so that
-//! a later --resume cannot continue it with this run's files.
+//! a later --resume cannot continue it with this run's files. Only what a run writes there
+//! (`latest`, step_<n> folders with their manifest) is removed; anything else stays.
 void start_fresh_checkpoints(const std::string& run_dir, MPI_Comm comm) {
+  namespace fs = std::filesystem;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  if (rank == 0)
-    std::filesystem::remove_all(CheckpointFolder::root(run_dir));
+  const fs::path root = CheckpointFolder::root(run_dir);
+  if (rank == 0 && fs::is_directory(root)) {
+    std::vector<fs::path> ours;
+    for (const fs::directory_entry& e : fs::directory_iterator(root)) {
+      const std::string name = e.path().filename().string();
+      const bool pointer = (name == "latest" || name == "latest.tmp") && !e.is_directory();
+      const bool step = CheckpointFolder::is_step_name(name) && !e.is_symlink() &&
+                        e.is_directory() && fs::exists(e.path() / CheckpointFolder::kManifest);
+      if (pointer || step)
+        ours.push_back(e.path());
+    }
+    for (const fs::path& p : ours)
+      fs::remove_all(p);
+    if (fs::is_empty(root))
+      fs::remove(root);
+  }
   MPI_Barrier(comm);
 }
 
@@ -120,7 +137,10 @@ bool run_case(MpmProblem problem, const RunOptions& options,
       observer(solver);
     if (!checkpoints)
       continue;
-    const bool stop = stop_requested(options.comm);
+    if (rank == 0 && solver.steps() == options.hooks.term_at_step)
+      std::raise(SIGTERM);  // as a signal arriving during that step
+    // A stop after the last step is not honoured: the run is complete, nothing to resume.
+    const bool stop = stop_requested(options.comm) && solver.steps() < total;
     const bool due = c.checkpoint_every > 0 && solver.steps() % c.checkpoint_every == 0 &&
                      solver.steps() < total;
     if ((stop || due) && obstacle.empty()) {

@@ -30,6 +30,7 @@ PY
 variant stiffer 'c["materials"][0]["youngs_modulus"] *= 2; c["gravity"][1] = -9.8'
 variant longer 'c["analysis"]["end"]["steps"] = 48; c["output"]["every"] = 4; c["title"] = "x"'
 variant shorter 'c["analysis"]["end"]["steps"] = 12'
+variant commented 'c["_see [3"] = "x"; c["materials"][0]["_note"] = "changed"'
 
 "$exe" "$work/case.json" --output "$work/reference" > /dev/null || { echo "reference run failed"; exit 1; }
 (MPM_LIG_KILL_AT_STEP=18 "$exe" "$work/case.json" --output "$work/base" > /dev/null 2>&1) 2> /dev/null
@@ -113,6 +114,30 @@ done
 rmdir "$work/run/results.h5.resume_tmp"
 expect 0 "" "$work/case.json" --resume "$work/run"
 /usr/bin/python3 "$here/../coupling/compare_runs.py" "$work/reference" "$work/run" > /dev/null || fail "resumed run differs from the uninterrupted one"
+
+scenario="--output name the system cannot resolve"
+fresh; expect 2 "--output .*: File name too long" "$work/case.json" --resume "$work/run" \
+  --output "$work/run/$(printf 'x%.0s' {1..300})"
+unchanged
+
+scenario="comment keys (one with an unmatched '[') added on resume"
+fresh; expect 0 "" "$work/commented.json" --resume "$work/run"
+
+scenario="foreign files in checkpoints/ (new run)"
+fresh; mkdir "$work/run/checkpoints/mine" && echo keep > "$work/run/checkpoints/mine/data"
+echo keep > "$work/run/checkpoints/notes.txt"
+expect 0 "" "$work/case.json" --output "$work/run"
+[ -f "$work/run/checkpoints/mine/data" ] && [ -f "$work/run/checkpoints/notes.txt" ] ||
+  fail "the user's files in checkpoints/ are gone"
+
+scenario="SIGTERM during the last step: the run completes"
+scenarios=$((scenarios + 1)); rm -rf "$work/last"
+MPM_LIG_TERM_AT_STEP=40 timeout 60 "$exe" "$work/case.json" --output "$work/last" > "$work/out.log" 2>&1 ||
+  fail "exit $?: $(tail -c 300 "$work/out.log")"
+! grep -q "stopped by a signal" "$work/out.log" || fail "stopped after its last step"
+[ -f "$work/last/summary.json" ] || fail "no summary.json: the run did not complete"
+/usr/bin/python3 "$here/../coupling/compare_runs.py" "$work/reference" "$work/last" > /dev/null ||
+  fail "differs from the uninterrupted run"
 
 scenario="safe keys changed: end, output.every, title"
 fresh; expect 0 "" "$work/longer.json" --resume "$work/run"
