@@ -39,11 +39,13 @@ def footing_of(case_path):
 
 
 def points_inside(positions, centre, half_width, base):
-    """How many points lie within the footprint and above the base."""
+    """How many points lie within the footprint and above the base. A point on a face (put
+    there by keep_points_out, to round-off) is not inside."""
     dims = len(centre)
+    tolerance = 1e-9 * half_width.max()
     horizontal = positions[:, :dims]
-    under = np.all(np.abs(horizontal - centre) < half_width, axis=1)
-    return int(np.count_nonzero(under & (positions[:, dims] > base)))
+    under = np.all(np.abs(horizontal - centre) < half_width - tolerance, axis=1)
+    return int(np.count_nonzero(under & (positions[:, dims] > base + tolerance)))
 
 
 def main():
