@@ -330,6 +330,7 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
     f.velocity = r.get<double>("velocity");
     f.function = TimeFunction::read(r, "function");
     f.rough = r.choice("interface", {"rough", "smooth"}) == "rough";
+    f.keep_points_out = r.get_or<bool>("keep_points_out", false);
     c.footings.push_back(std::move(f));
   }
 }

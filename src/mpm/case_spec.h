@@ -52,6 +52,8 @@ struct Footing {
   double velocity = 0.0;       //!< downward speed times `function(t)` [m/s]
   TimeFunction function;
   bool rough = true;
+  //! Put points that enter the footing back on its nearest face (default off).
+  bool keep_points_out = false;
 };
 
 //! Material points filling a box, with an initial velocity.

@@ -76,6 +76,34 @@ void RigidFooting<D>::advance(double t, double scale, double dt) {
   settlement_ += speed(t, scale) * dt;
 }
 
+template <int D>
+void RigidFooting<D>::push_out(Vec& x, Vec& v, double t, double scale, double dt) const {
+  constexpr int up = D - 1;
+  const double vf = speed(t, scale);
+  const double base_next = base() - vf * dt;
+  // Depth inside through each face: the base, and each side of the footprint.
+  int nearest = up;
+  double depth = x[up] - base_next;
+  for (int d = 0; d < up; ++d) {
+    const double side = 0.5 * spec_.width[d] - std::abs(x[d] - spec_.center[d]);
+    if (side < depth) {
+      depth = side;
+      nearest = d;
+    }
+  }
+  if (depth <= 0.0)
+    return;
+  if (nearest == up) {
+    x[up] = base_next;
+    v[up] = std::min(v[up], -vf);
+    return;
+  }
+  const double outward = x[nearest] >= spec_.center[nearest] ? 1.0 : -1.0;
+  x[nearest] = spec_.center[nearest] + outward * 0.5 * spec_.width[nearest];
+  if (v[nearest] * outward < 0.0)
+    v[nearest] = 0.0;
+}
+
 template class RigidFooting<2>;
 template class RigidFooting<3>;
 

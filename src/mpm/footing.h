@@ -30,6 +30,14 @@ class RigidFooting {
   void apply(Grid<D>& grid, double t, double scale, double dt, bool record);
   //! Move the base by one step.
   void advance(double t, double scale, double dt);
+  //! Whether the case asked for `keep_points_out`.
+  bool keeps_points_out() const { return spec_.keep_points_out; }
+  //! A point whose centre lies inside the footing once its base has moved this step (within
+  //! the footprint, above the base) goes back onto the nearest face, and its velocity loses
+  //! the component into that face. The grid contact alone lets the base overtake points at
+  //! its edge; carried inside and released later, they jolt the load (docs/
+  //! footing_mesh_convergence.md).
+  void push_out(Vec& x, Vec& v, double t, double scale, double dt) const;
 
   //! Downward velocity at time t [m/s].
   double speed(double t, double scale) const {

@@ -273,6 +273,10 @@ void Solver<D>::map_grid_to_particles() {
     v = flip_ * (v + dv) + (1.0 - flip_) * v_pic;
     particles_.position[p] += dt_ * v_pic;
     wrap_periodic(particles_.position[p]);
+    for (const auto& f : footings_) {
+      if (f.keeps_points_out())
+        f.push_out(particles_.position[p], v, time_, prescribed_scale_, dt_);
+    }
   }
 }
 

@@ -259,6 +259,35 @@ def footing_bad(work):
     expect_bad_input(run_tool("plot_footing.py", work, "--width", 1, "--phi", 30), "--surcharge")
 
 
+def footing_intrusion(work):
+    """Points placed inside a descending footing (centre 0, B = 0.2 m, base 0.6 m at s = 0):
+    0, 2, then 1 point inside at three output steps; the count is read from the table."""
+    t = np.linspace(0, 0.2, 21)
+    s = 0.5 * t  # settlement: base 0.6 - s
+    synthetic.write_history(work, ["step", "time", "settlement", "q"],
+                            np.column_stack([np.arange(len(t)), t, s, 1e6 + 0 * t]))
+    grid = np.array([[x, y, 0.0] for x in (0.05, 0.15, 0.25) for y in (0.05, 0.15, 0.25)])
+    inside = {0: [], 10: [[0.05, 0.56, 0.0], [0.09, 0.7, 0.0]], 20: [[0.02, 0.51, 0.0]]}
+    # Near misses: beside the footprint (x = 0.11) and just under the base at step 20.
+    near = [[0.11, 0.58, 0.0], [0.02, 0.49, 0.0]]
+    steps = [(k, t[k], {"positions": np.array(grid.tolist() + inside[k] + near)}) for k in inside]
+    synthetic.write_fields(work, steps)
+    case = os.path.join(work, "case.json")
+    open(case, "w").write('{"rigid_bodies": [{"type": "footing", "center": [0], "width": [0.2], '
+                          '"base": 0.6}], "boundary_conditions": [{"type": "traction", '
+                          '"traction": [0, -1e5]}]}')
+    result = run_tool("footing_intrusion.py", work, "--case", case)
+    expect(result.returncode == 0, "footing_intrusion failed: " + result.stderr)
+    rows = [line.split() for line in result.stdout.splitlines() if re.match(r"\s*[0-9.]+\s+\d+\s", line)]
+    expect([int(r[1]) for r in rows] == [0, 2, 1], f"counts per changed step: {rows}")
+    expect([float(r[0]) for r in rows] == [0.0, 0.25, 0.5], f"s/B of the rows: {rows}")
+    expect(abs(float(rows[0][2]) - 10.0) < 1e-9, "q/q_s from the case's traction")
+    expect(numbers_after(result.stdout, "at once:")[0] == 2, "largest count")
+    check_picture(os.path.join(work, "intrusion.png"), min_colours=8)
+    expect_bad_input(run_tool("footing_intrusion.py", work, "--case", os.path.join(work, "none.json")),
+                     "none.json")
+
+
 # ---- fields -------------------------------------------------------------------------------
 def lattice(dimension, n=(24, 12, 6), h=0.1):
     axes = [(np.arange(k) + 0.5) * h for k in n[:dimension]]
@@ -341,7 +370,7 @@ def real_footing(work, mpm_lig):
 
 
 CASES = {f.__name__: f for f in (real_footing, shear_element, shear_mpm, shear_points, shear_bad, force_chains, force_chains_bad,
-                                 footing, footing_bad, fields_2d, fields_3d, fields_bad)}
+                                 footing, footing_bad, footing_intrusion, fields_2d, fields_3d, fields_bad)}
 
 if __name__ == "__main__":
     if len(sys.argv) not in (3, 4) or sys.argv[1] not in CASES:
