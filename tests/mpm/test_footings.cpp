@@ -168,14 +168,14 @@ TEST(Footing, KeepPointsOutStopsTheBaseOvertakingPoints) {
   // inside and released later, such points jolt the load from d/B = 0.8 on:
   // docs/footing_mesh_convergence.md). With keep_points_out no point centre is ever inside.
   auto most_inside = [](bool keep_out) {
-    MpmCase c = testing::load_case("../footing_mc_mesh/h8", [&](nlohmann::json& j) {
+    MpmProblem c = testing::load_case("../footing_mc_mesh/h8", [&](nlohmann::json& j) {
       j["output"]["fields"] = false;
       j["analysis"]["end"]["time"] = 0.12;
       j["analysis"]["gravity_stage"]["steps"] = 1000;
       j["rigid_bodies"][0]["keep_points_out"] = keep_out;
     });
     int most = 0;
-    run_case<2>(c, "", [&](const Solver<2>& s) {
+    run_case<2>(std::move(c), "", [&](const Solver<2>& s) {
       const auto& f = s.footings().front();
       int inside = 0;
       for (const auto& x : s.particles().position)
