@@ -51,8 +51,7 @@ TEST(RveCompaction, ReachesTargetVoidRatioAndRestoresFriction) {
   // Compaction stages stop as the void ratio crosses the upper half of the band;
   // re-consolidating with the real friction moves it by a few 1e-3 at most.
   EXPECT_NEAR(c.final.void_ratio, target, spec.preparation.void_ratio_tolerance);
-  EXPECT_NEAR(mean_pressure(c.final.stress, 2), kPressure,
-              spec.preparation.tolerance * kPressure);
+  EXPECT_NEAR(mean_pressure(c.final.stress, 2), kPressure, spec.preparation.tolerance * kPressure);
   EXPECT_LT(c.final.kinetic_ratio(), 0.01);
   // Friction restored: a denser packing with the real friction is at least as strong in
   // shear as the looser reference (a frictionless one would lose most of its strength).
@@ -87,8 +86,7 @@ TEST(RveCompaction, TargetVoidRatioIn3dReachedOrRefused) {
   EXPECT_EQ(c.void_ratio_reached,
             std::abs(c.void_ratio_error) <= spec.preparation.void_ratio_tolerance);
   EXPECT_LT(c.final.void_ratio, full - 0.01);  // compacted well below the full-friction value
-  EXPECT_NEAR(mean_pressure(c.final.stress, 3), kPressure,
-              spec.preparation.tolerance * kPressure);
+  EXPECT_NEAR(mean_pressure(c.final.stress, 3), kPressure, spec.preparation.tolerance * kPressure);
   if (c.void_ratio_reached)
     EXPECT_NO_THROW(rve::require_void_ratio(*dense, c));
   else
