@@ -37,7 +37,6 @@ std::unique_ptr<Rve> Rve::generate(const RveSpec& spec, MPI_Comm comm, const std
   rve->engine_->commands(material_input(spec, spec.contact.friction));
   rve->engine_->commands(dynamics_input(spec));
   rve->engine_->command("run 0");
-  rve->settled_ = true;
   return rve;
 }
 
@@ -58,7 +57,6 @@ std::unique_ptr<Rve> Rve::read(const RveSpec& spec, const std::string& restart_f
                              std::to_string(count) + " grains, " + spec.path + ".grains says " +
                              std::to_string(spec.grains));
   }
-  rve->settled_ = true;
   return rve;
 }
 
@@ -150,7 +148,6 @@ void Rve::write_restart(const std::string& file) {
   // A clone re-evaluates the contact forces once when it starts (which advances the tangential
   // history by one step); doing the same here keeps the original bit-identical to its clones.
   engine_->command("run 0");
-  settled_ = true;
 }
 
 void Rve::write_checked_restart(const std::string& file) {
@@ -164,7 +161,6 @@ void Rve::write_checked_restart(const std::string& file) {
 
 void Rve::write_checkpoint(const std::string& file) {
   write_checked_restart(file);
-  settled_ = true;  // the write did the set-up the next deform would run
 }
 
 void Rve::restore(const State& s) {
@@ -262,7 +258,6 @@ int Rve::deform(const Mat3& dF, int substeps) {
   // advances the tangential history by one step, a systematic error per update (measured: the
   // quick-start block's lateral reaction 1.072 p0 H instead of 1.001). Writing a checkpoint
   // therefore still perturbs a chaotic run at round-off (docs/running.md).
-  settled_ = false;
   reduce_cell_basis();
   const Mat3 h = box_matrix();
   const BoxStep step = box_step(rotation_.transpose() * dF * rotation_, h);

@@ -66,7 +66,7 @@ class Rve {
   };
   //! Checkpoint of a running RVE: the engine restart (contact history and streaming velocities
   //! kept) in `file`; with state() it continues bit-identically after from_checkpoint +
-  //! restore(), and writing it does not change how this RVE continues (see `settled_`).
+  //! restore(); writing it perturbs this RVE at round-off (docs/DESIGN.md §10).
   void write_checkpoint(const std::string& file);
   State state() const { return {rotation_, streaming_, particle_steps_, last_mean_stress_}; }
   //! Take the state a checkpoint saved (after from_restart of its restart file).
@@ -100,13 +100,6 @@ class Rve {
   Mat3 streaming_ = Mat3::Zero();  //!< velocity gradient currently in the grain velocities
   double particle_steps_ = 0.0;
   double last_mean_stress_ = 0.0;
-  //! Whether the engine's set-up (`run 0`: init, re-neighbouring, force evaluation) has run
-  //! since the last deform. Each set-up changes the arithmetic at round-off, and an engine's
-  //! write_restart does exactly what a `run 0` does (measured bit for bit, LIGGGHTS 3.8). So
-  //! every deform starts with a set-up unless a restart was just written or read: a
-  //! checkpoint takes the place of a set-up that happens anyway, and runs with and without
-  //! checkpoints (or stopped and resumed) do the same arithmetic.
-  bool settled_ = false;
 };
 
 }  // namespace mpm_lig::rve
