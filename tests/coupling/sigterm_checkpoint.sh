@@ -40,8 +40,14 @@ if [ $# -eq 0 ] && [ $status -ne 0 ]; then
   echo "the stopped run exited $status, not 0:"; cat "$work/stopped.log"; exit 1
 fi
 end=$(date +%s.%N)
-grep -q "stopped by a signal after step" "$work/stopped.log" || {
-  echo "no stop message:"; cat "$work/stopped.log"; exit 1; }
+if ! grep -q "stopped by a signal after step" "$work/stopped.log"; then
+  # On a fast machine the run can finish before mpirun has forwarded the signal: nothing was
+  # tested, which is not a failure (exit 77: skipped). A run that neither stopped nor finished is.
+  if grep -q "mpm step 1000/1000" "$work/stopped.log" && [ -f "$run/summary.json" ]; then
+    echo "skipped: the run ended before SIG$signal reached it"; exit 77
+  fi
+  echo "no stop message:"; cat "$work/stopped.log"; exit 1
+fi
 latest=$(cat "$run/checkpoints/latest")
 step=${latest#step_}
 rows=$(($(wc -l < "$run/history.csv") - 1))
