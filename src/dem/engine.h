@@ -61,6 +61,13 @@ class Engine {
   //! Per-atom property gathered on every rank of the instance, ordered by atom id
   //! (`name` as in lammps_gather_atoms: "x", "v", "radius", ...; `count` values per atom).
   virtual std::vector<double> gather_atoms(const std::string& name, int count) = 0;
+  //! Set a per-atom property from `values` in gather_atoms' layout (every rank passes all atoms).
+  virtual void scatter_atoms(const std::string& name, int count,
+                             const std::vector<double>& values) = 0;
+  //! Integer per-atom properties ("image": the packed periodic image flags), as gather_atoms.
+  virtual std::vector<int> gather_atom_ints(const std::string& name, int count) = 0;
+  virtual void scatter_atom_ints(const std::string& name, int count,
+                                 const std::vector<int>& values) = 0;
   //! All contacts with their forces (for Σ r⊗f / V and force-chain snapshots), on every rank
   //! of the instance. Forces are evaluated at the current positions and velocities, without
   //! touching the contact history (LIGGGHTS: compute pair/gran/local; LAMMPS: compute

@@ -103,6 +103,23 @@ std::vector<double> GuardedEngine::gather_atoms(const std::string& name, int cou
   return impl_->gather_atoms(name, count);
 }
 
+void GuardedEngine::scatter_atoms(const std::string& name, int count,
+                                  const std::vector<double>& values) {
+  Scope scope(this);
+  impl_->scatter_atoms(name, count, values);
+}
+
+std::vector<int> GuardedEngine::gather_atom_ints(const std::string& name, int count) {
+  Scope scope(this);
+  return impl_->gather_atom_ints(name, count);
+}
+
+void GuardedEngine::scatter_atom_ints(const std::string& name, int count,
+                                      const std::vector<int>& values) {
+  Scope scope(this);
+  impl_->scatter_atom_ints(name, count, values);
+}
+
 std::vector<Contact> GuardedEngine::contacts() {
   Scope scope(this);
   return impl_->contacts();

@@ -30,6 +30,11 @@ class GuardedEngine final : public Engine {
   double compute_scalar(const std::string& compute_id) override;
   std::vector<double> compute_vector(const std::string& compute_id, int length) override;
   std::vector<double> gather_atoms(const std::string& name, int count) override;
+  void scatter_atoms(const std::string& name, int count,
+                     const std::vector<double>& values) override;
+  std::vector<int> gather_atom_ints(const std::string& name, int count) override;
+  void scatter_atom_ints(const std::string& name, int count,
+                         const std::vector<int>& values) override;
   std::vector<Contact> contacts() override;
   std::string recent_output() const override;
 

@@ -4,6 +4,11 @@
 #include <stdexcept>
 
 #include "library.h"  // the engine's own C interface (include path set per module)
+#include "lmptype.h"
+
+// Image flags go through the library as C ints (type 0); a build with 64-bit image flags
+// (LAMMPS_BIGBIG) would need another transfer type.
+static_assert(sizeof(LAMMPS_NS::imageint) == sizeof(int), "image flags are not 32-bit ints");
 
 namespace mpm_lig::dem::detail {
 
@@ -55,6 +60,34 @@ std::vector<double> LibraryEngine::gather_atoms(const std::string& name, int cou
   std::vector<double> data(static_cast<std::size_t>(atom_count()) * count);
   lammps_gather_atoms(handle_, const_cast<char*>(name.c_str()), 1, count, data.data());
   return data;
+}
+
+void LibraryEngine::scatter_atoms(const std::string& name, int count,
+                                  const std::vector<double>& values) {
+  check_atom_values(values.size(), count, name);
+  // The library reads the values only; its signature (LAMMPS 2021) is not const.
+  lammps_scatter_atoms(handle_, const_cast<char*>(name.c_str()), 1, count,
+                       const_cast<double*>(values.data()));
+}
+
+std::vector<int> LibraryEngine::gather_atom_ints(const std::string& name, int count) {
+  std::vector<int> data(static_cast<std::size_t>(atom_count()) * count);
+  lammps_gather_atoms(handle_, const_cast<char*>(name.c_str()), 0, count, data.data());
+  return data;
+}
+
+void LibraryEngine::scatter_atom_ints(const std::string& name, int count,
+                                      const std::vector<int>& values) {
+  check_atom_values(values.size(), count, name);
+  lammps_scatter_atoms(handle_, const_cast<char*>(name.c_str()), 0, count,
+                       const_cast<int*>(values.data()));
+}
+
+void LibraryEngine::check_atom_values(std::size_t size, int count, const std::string& name) const {
+  if (size != static_cast<std::size_t>(atom_count()) * count)
+    throw std::invalid_argument("scatter of '" + name + "': " + std::to_string(size) +
+                                " values for " + std::to_string(atom_count()) + " atoms × " +
+                                std::to_string(count));
 }
 
 long LibraryEngine::ghost_count() const {

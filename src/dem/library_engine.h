@@ -25,6 +25,11 @@ class LibraryEngine : public ModuleEngine {
   double compute_scalar(const std::string& compute_id) override;
   std::vector<double> compute_vector(const std::string& compute_id, int length) override;
   std::vector<double> gather_atoms(const std::string& name, int count) override;
+  void scatter_atoms(const std::string& name, int count,
+                     const std::vector<double>& values) override;
+  std::vector<int> gather_atom_ints(const std::string& name, int count) override;
+  void scatter_atom_ints(const std::string& name, int count,
+                         const std::vector<int>& values) override;
   std::string recent_output() const override { return output_.text(); }
   void record_output(const std::string& text) override { output_.append(text); }
   long ghost_count() const override;
@@ -39,6 +44,8 @@ class LibraryEngine : public ModuleEngine {
   //! A local array (rows × columns) of a compute, gathered over the instance's ranks.
   std::vector<double> gather_local_array(const std::string& compute_id, int local_rows,
                                          int columns);
+  //! Throws unless `size` = atoms × `count`.
+  void check_atom_values(std::size_t size, int count, const std::string& name) const;
   //! Positions of all atoms, ordered by atom id (ids 1..N).
   std::vector<Vec3> positions_by_id();
 

@@ -9,6 +9,7 @@
 #include "rve/engine_input.h"
 #include "rve/kinematics.h"
 #include "rve/packing.h"
+#include "rve/placement.h"
 
 namespace mpm_lig::rve {
 namespace {
@@ -69,9 +70,21 @@ std::unique_ptr<Rve> Rve::from_restart(const RveSpec& spec, const std::string& r
 
 std::unique_ptr<Rve> Rve::from_checkpoint(const RveSpec& spec, const std::string& file,
                                           MPI_Comm comm, const std::string& label) {
-  // No `run 0`: the file holds the state after the original's write_restart, which did the
-  // set-up the original's next deform skips (measured: the clone then continues bit for bit).
-  return read(spec, file, comm, label);
+  // No `run 0`: the original went on from its state as it was before the write, which the
+  // restart file plus the exact placement restore; the next update's run does the set-up.
+  Placement exact;
+  try {
+    exact = read_placement(placement_file(file), spec.grains);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(label + ": " + e.what());
+  }
+  std::unique_ptr<Rve> rve = read(spec, file, comm, label);
+  put_placement(*rve->engine_, exact);
+  return rve;
+}
+
+std::string Rve::placement_file(const std::string& checkpoint_file) {
+  return checkpoint_file + ".placement";
 }
 
 Mat3 Rve::box_matrix() const {
@@ -160,7 +173,16 @@ void Rve::write_checked_restart(const std::string& file) {
 }
 
 void Rve::write_checkpoint(const std::string& file) {
+  // write_restart wraps the grains through reduced coordinates (round-off in x and new image
+  // flags); the run goes on from the positions it had, and a resume starts from the same.
+  const Placement exact = take_placement(*engine_);
   write_checked_restart(file);
+  put_placement(*engine_, exact);
+  try {
+    write_placement(exact, placement_file(file), comm_);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(label_ + ": " + e.what());
+  }
 }
 
 void Rve::restore(const State& s) {
@@ -256,8 +278,7 @@ int Rve::deform(const Mat3& dF, int substeps) {
   }
   // No `run 0` set-up before an update: in LIGGGHTS a set-up re-evaluates the contacts and
   // advances the tangential history by one step, a systematic error per update (measured: the
-  // quick-start block's lateral reaction 1.072 p0 H instead of 1.001). Writing a checkpoint
-  // therefore still perturbs a chaotic run at round-off (docs/running.md).
+  // quick-start block's lateral reaction 1.072 p0 H instead of 1.001).
   reduce_cell_basis();
   const Mat3 h = box_matrix();
   const BoxStep step = box_step(rotation_.transpose() * dF * rotation_, h);

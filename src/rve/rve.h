@@ -65,9 +65,12 @@ class Rve {
     double last_mean_stress = 0.0;
   };
   //! Checkpoint of a running RVE: the engine restart (contact history and streaming velocities
-  //! kept) in `file`; with state() it continues bit-identically after from_checkpoint +
-  //! restore(); writing it perturbs this RVE at round-off (docs/DESIGN.md §10).
+  //! kept) in `file` and the exact grain placement in placement_file(`file`). Writing it leaves
+  //! this RVE's arithmetic untouched, and after from_checkpoint + restore(state()) a clone
+  //! continues bit-identically (one rank per RVE; docs/DESIGN.md §10).
   void write_checkpoint(const std::string& file);
+  //! The file beside a checkpoint's restart file that keeps the exact placement.
+  static std::string placement_file(const std::string& checkpoint_file);
   State state() const { return {rotation_, streaming_, particle_steps_, last_mean_stress_}; }
   //! Take the state a checkpoint saved (after from_restart of its restart file).
   void restore(const State& s);
