@@ -33,7 +33,8 @@ constexpr const char* kUsage = R"(usage:
   --resume DIR   continue the run in DIR from its last checkpoint; the results continue
                  in DIR too (--output, if given as well, must name the same folder)
 
-Exit codes: 0 done, 1 run failed, 2 bad case or command line, 3 a DEM engine failed.
+Exit codes: 0 done, 1 run failed, 2 bad case or command line, 3 a DEM engine failed,
+  4 stopped by SIGTERM/SIGINT/SIGHUP (after a checkpoint: continue with --resume DIR).
 )";
 
 struct CommandLine {
@@ -206,7 +207,9 @@ int main(int argc, char** argv) {
     if (root_rank && !context.resume)
       std::filesystem::create_directories(context.output_dir);
     MPI_Barrier(MPI_COMM_WORLD);
-    analysis->run(context);
+    // A stopped run has said where it stopped and whether its checkpoint was written.
+    if (analysis->run(context) == mpm_lig::RunEnd::stopped)
+      return mpm_lig::kExitStopped;
   } catch (const mpm_lig::ResumeError& e) {
     // Refused on every rank alike, before any file was touched.
     if (root_rank)

@@ -12,6 +12,16 @@
 
 namespace mpm_lig {
 
+//! Exit code of a run that a signal (SIGTERM/SIGINT/SIGHUP) stopped after writing a checkpoint:
+//! not complete, to be continued with --resume (0 is for complete runs only).
+inline constexpr int kExitStopped = 4;
+
+//! How run() ended when it did not throw.
+enum class RunEnd {
+  completed,  //!< every step done and every result written
+  stopped,    //!< stopped by a signal; a checkpoint to resume from was written if possible
+};
+
 //! What every analysis gets to run: where to write and on which ranks.
 struct RunContext {
   std::string case_file;  //!< the case file as given on the command line
@@ -36,7 +46,7 @@ class Analysis {
   //! What neither the constructor nor check_run() can know before the run, one line each,
   //! for `mpm_lig --validate` to say (empty: everything was checked).
   virtual std::vector<std::string> unchecked() const { return {}; }
-  virtual void run(const RunContext& context) = 0;
+  virtual RunEnd run(const RunContext& context) = 0;
   //! Whether run() can continue from a checkpoint (RunContext::resume).
   virtual bool supports_resume() const { return false; }
 };

@@ -27,7 +27,7 @@ constexpr double kMaxIncrements = 1e9;
 class ElementTest : public Analysis {
  public:
   ElementTest(rve::RveSpec rve, ElementTestSpec test) : rve_(std::move(rve)), test_(test) {}
-  void run(const RunContext& context) override;
+  RunEnd run(const RunContext& context) override;
 
   void check_run(const RunContext& context) const override {
     const std::string unusable = dem::unusable_file_name(context.output_dir);
@@ -190,7 +190,7 @@ double ElementTest::lateral_stiffness(rve::Rve& rve) {
   return std::max((p1 - p0) / probe, 10.0 * std::abs(p0));
 }
 
-void ElementTest::run(const RunContext& context) {
+RunEnd ElementTest::run(const RunContext& context) {
   const auto start = std::chrono::steady_clock::now();
   int rank = 0;
   MPI_Comm_rank(context.comm, &rank);
@@ -292,6 +292,7 @@ void ElementTest::run(const RunContext& context) {
   summary["time_split"] = {{"preparation", preparation_seconds}};
   if (writer)
     io::write_json((dir / "summary.json").string(), summary);
+  return RunEnd::completed;
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ class MpmAnalysis final : public Analysis {
     return lines;
   }
 
-  void run(const RunContext& context) override {
+  RunEnd run(const RunContext& context) override {
     int rank = 0;
     MPI_Comm_rank(context.comm, &rank);
     const std::string& dir = context.output_dir;
@@ -65,13 +65,12 @@ class MpmAnalysis final : public Analysis {
     options.hooks = context.hooks;
     prepare_materials(problem_, context.comm, dir + "/packings", context.hooks);
     options.prior_seconds = MPI_Wtime() - start;
-    // A run stopped by a signal has written its checkpoint and said so: it ends normally.
     // run() is called once: the problem's materials move into the solver.
-    if (problem_.spec.dimension == 2)
-      run_case<2>(std::move(problem_), options);
-    else
-      run_case<3>(std::move(problem_), options);
+    const bool completed = problem_.spec.dimension == 2
+                               ? run_case<2>(std::move(problem_), options)
+                               : run_case<3>(std::move(problem_), options);
     MPI_Barrier(context.comm);
+    return completed ? RunEnd::completed : RunEnd::stopped;
   }
 
  private:
