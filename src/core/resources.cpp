@@ -74,8 +74,12 @@ void MemoryBudget::check(MPI_Comm comm) const {
   const double own = getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY
                          ? static_cast<double>(limit.rlim_cur)
                          : 0.0;
-  const double available =
+  const double here =
       own > 0.0 ? std::min(machine_memory_bytes(), own * sharing) : machine_memory_bytes();
+  // The smallest machine decides, on every rank alike: a refusal on some ranks only would
+  // leave the others waiting in the run's first collective call.
+  double available = here;
+  MPI_Allreduce(&here, &available, 1, MPI_DOUBLE, MPI_MIN, comm);
   if (parts_.empty() || total() * sharing <= available)
     return;
   const auto largest = std::max_element(

@@ -26,7 +26,7 @@ class MemoryBudget {
   double total() const;
   //! Collective over `comm`: a CaseError naming the largest part's path unless all ranks of
   //! `comm` that share a machine fit into its memory together (and each rank into its own
-  //! address-space limit, `ulimit -v`, if it has one).
+  //! address-space limit, `ulimit -v`, if it has one); the smallest machine decides for all.
   void check(MPI_Comm comm) const;
 
  private:
