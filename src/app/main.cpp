@@ -193,6 +193,10 @@ int main(int argc, char** argv) {
     analysis->check_run(context);
   } catch (const mpm_lig::CaseError& e) {
     return refuse(case_name + ": " + e.what(), mpm_lig::kExitBadCase);
+  } catch (const mpm_lig::ResumeError& e) {
+    // Refused on every rank alike, before any file was touched.
+    return refuse("--resume " + mpm_lig::printable(context.output_dir, 300) + ": " + e.what(),
+                  mpm_lig::kExitBadCase);
   }
   if (cl->validate_only) {
     if (root_rank) {

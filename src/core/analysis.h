@@ -41,7 +41,8 @@ class Analysis {
   virtual ~Analysis() = default;
   //! Checks that need the run and not only the case: the rank count (rank groups, memory per
   //! rank) and the folder the run writes into. Collective over `context.comm`; called by
-  //! `mpm_lig --validate` and before a run creates anything; a CaseError on failure.
+  //! `mpm_lig --validate` and before a run creates anything; a CaseError on failure, a
+  //! ResumeError when the checkpoint of a resume (context.resume) is refused.
   virtual void check_run(const RunContext& /*context*/) const {}
   //! What neither the constructor nor check_run() can know before the run, one line each,
   //! for `mpm_lig --validate` to say (empty: everything was checked).

@@ -31,6 +31,10 @@ class MpmAnalysis final : public Analysis {
       problem_.materials[m]->check_run(static_cast<std::size_t>(points[m]), ranks,
                                        context.output_dir, budget);
     budget.check(context.comm);
+    // Before anything is written or prepared (and with --validate): a resume that could lose
+    // results is refused.
+    if (context.resume)
+      check_resume(c, context.output_dir, context.comm);
   }
 
   std::vector<std::string> unchecked() const override {
@@ -51,9 +55,6 @@ class MpmAnalysis final : public Analysis {
     int rank = 0;
     MPI_Comm_rank(context.comm, &rank);
     const std::string& dir = context.output_dir;
-    // Before anything is written or prepared: a resume that could lose results is refused.
-    if (context.resume)
-      check_resume(problem_.spec, dir, context.comm);
     RunOptions options;
     options.run_dir = dir;
     options.write_results = rank == 0;

@@ -74,6 +74,9 @@ fresh; rm "$work/run/checkpoints/step_16/MANIFEST.sha256"; digest "$work/run" > 
 resume_refused "has no MANIFEST.sha256"
 scenario="changed case"
 fresh; resume_refused "case has changed.*gravity\[1\], materials\[0\]\.youngs_modulus \(only" "$work/stiffer.json"
+scenario="changed case, --validate --resume"
+fresh; expect 2 "case has changed.*gravity\[1\]" --validate "$work/stiffer.json" --resume "$work/run"
+unchanged
 scenario="end before the checkpoint"
 fresh; resume_refused "analysis\.end\.steps = 12 lies before the checkpoint's step 16" "$work/shorter.json"
 scenario="history.csv deleted"
