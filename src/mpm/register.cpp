@@ -67,9 +67,8 @@ class MpmAnalysis final : public Analysis {
     prepare_materials(problem_, context.comm, dir + "/packings", context.hooks);
     options.prior_seconds = MPI_Wtime() - start;
     // run() is called once: the problem's materials move into the solver.
-    const bool completed = problem_.spec.dimension == 2
-                               ? run_case<2>(std::move(problem_), options)
-                               : run_case<3>(std::move(problem_), options);
+    const bool completed = problem_.spec.dimension == 2 ? run_case<2>(std::move(problem_), options)
+                                                        : run_case<3>(std::move(problem_), options);
     MPI_Barrier(context.comm);
     return completed ? RunEnd::completed : RunEnd::stopped;
   }
