@@ -9,7 +9,8 @@
 # (Tresca continuum). Example, before/after a refactoring:
 #   tools/compare_builds.sh /work/baseline/mpm_lig build/mpm_lig /tmp/compare
 # REUSE_REFERENCE=1 keeps reference runs already in WORK_DIR (the reference build's results do
-# not change between two comparisons).
+# not change between two comparisons). ALLOW_ADDED=1 lets the new build write outputs the
+# reference lacks (listed), as long as every shared value is bit-identical.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 reference=$(realpath "$1") new=$(realpath "$2") work=$3
@@ -36,7 +37,10 @@ for entry in "${cases[@]}"; do
     "${mpirun[@]}" -np "$np" "$binary" "$case_file" --output "$work/$name/$side" \
       > "$work/$name/$side.log" 2>&1
   done
-  if /usr/bin/python3 "$here/compare_outputs.py" "$work/$name/reference" "$work/$name/new"; then
+  added=()
+  [ "${ALLOW_ADDED:-0}" = 1 ] && added=(--allow-added)
+  if /usr/bin/python3 "$here/compare_outputs.py" "$work/$name/reference" "$work/$name/new" \
+       ${added[@]+"${added[@]}"}; then
     echo "$name: bit-identical"
   else
     echo "$name: DIFFERS" >&2
