@@ -268,7 +268,8 @@ void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
   int index = -1;
   for (const CaseNode& b : root.children("boundary_conditions")) {
     ++index;
-    const std::string type = b.choice("type", {"fixed", "roller", "velocity", "traction"});
+    const std::string type =
+        b.choice("type", {"fixed", "roller", "velocity", "rotation", "traction"});
     if (type == "traction") {
       Traction t;
       t.points = read_box(b, "points", c.dimension);
@@ -285,11 +286,22 @@ void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
     Constraint k;
     k.case_index = index;
     k.nodes = read_nodes(b, c);
-    k.type = type == "fixed"    ? Constraint::Type::fixed
-             : type == "roller" ? Constraint::Type::roller
-                                : Constraint::Type::velocity;
-    if (k.type != Constraint::Type::fixed)
+    k.type = type == "fixed"      ? Constraint::Type::fixed
+             : type == "roller"   ? Constraint::Type::roller
+             : type == "rotation" ? Constraint::Type::rotation
+                                  : Constraint::Type::velocity;
+    if (k.type == Constraint::Type::roller || k.type == Constraint::Type::velocity)
       k.direction = read_axis(b, "direction", c.dimension);
+    if (k.type == Constraint::Type::rotation) {
+      k.center = read_vector(b, "center", c.dimension);
+      if (c.dimension == 2) {
+        k.angular_velocity.z() = b.get<double>("angular_velocity");
+      } else {
+        const std::vector<double> w = read_vector(b, "angular_velocity", 3);
+        k.angular_velocity = Vec3(w[0], w[1], w[2]);
+      }
+      k.function = TimeFunction::read(b, "function");
+    }
     if (k.type == Constraint::Type::velocity) {
       k.velocity = b.get<double>("velocity");
       k.function = TimeFunction::read(b, "function");

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/case_node.h"
+#include "core/tensor.h"
 #include "materials/material.h"
 #include "mpm/material_set.h"
 #include "mpm/time_function.h"
@@ -27,11 +28,15 @@ struct NodeSelector {
 
 //! A velocity constraint on a node set (fixed, roller, or prescribed velocity).
 struct Constraint {
-  enum class Type { fixed, roller, velocity };
+  enum class Type { fixed, roller, velocity, rotation };
   Type type = Type::fixed;
   NodeSelector nodes;
   int direction = 0;      //!< roller and velocity: the constrained axis
   double velocity = 0.0;  //!< velocity: value times `function(t)` [m/s]
+  //! rotation: v = ω × (x − center) × `function(t)` on every component; ω [rad/s] is
+  //! (0, 0, ω_z) in 2D.
+  std::vector<double> center;
+  Vec3 angular_velocity = Vec3::Zero();
   TimeFunction function;
   int case_index = 0;  //!< position in boundary_conditions (names its history columns)
 };

@@ -41,6 +41,16 @@ std::vector<long> fold_periodic(const std::vector<long>& nodes, const Grid<D>& g
   return out;
 }
 
+//! ω × (x − center), in the first D components.
+template <int D>
+Eigen::Matrix<double, D, 1> rigid_rotation_velocity(const Constraint& c,
+                                                    const Eigen::Matrix<double, D, 1>& x) {
+  Vec3 arm = Vec3::Zero();
+  for (int d = 0; d < D; ++d)
+    arm[d] = x[d] - c.center[d];
+  return c.angular_velocity.cross(arm).template head<D>();
+}
+
 }  // namespace
 
 template <int D>
@@ -75,6 +85,10 @@ void NodeConstraints<D>::apply(Grid<D>& grid, double t, double scale, double dt,
         case Constraint::Type::velocity:
           v[c.direction] = scale * c.velocity * c.function.at(t);
           held[c.direction] = 1.0;
+          break;
+        case Constraint::Type::rotation:
+          v = scale * c.function.at(t) * rigid_rotation_velocity(c, grid.node_position(node));
+          held.setOnes();
           break;
       }
       // The impulse that imposes v, plus the damping force on the imposed components:

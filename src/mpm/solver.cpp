@@ -28,6 +28,20 @@ MaterialSet require_prepared(MaterialSet materials) {
   return materials;
 }
 
+//! The deformation increment of one step from its velocity gradient times the step,
+//! ΔF = (I − ΔtL/2)⁻¹ (I + ΔtL/2) (midpoint rule, second order). Unlike I + ΔtL it is an exact
+//! rotation when L is a spin: a body turned rigidly keeps its volume and its stress, however
+//! far it turns (I + ΔtL stretches it by 1 + (ωΔt)² each step).
+template <int D>
+Mat3 step_increment(const Eigen::Matrix<double, D, D>& gradient_step) {
+  using Matrix = Eigen::Matrix<double, D, D>;
+  const Matrix half = 0.5 * gradient_step;
+  Mat3 dF = Mat3::Identity();
+  dF.template topLeftCorner<D, D>() =
+      (Matrix::Identity() - half).partialPivLu().solve(Matrix::Identity() + half);
+  return dF;
+}
+
 }  // namespace
 
 template <int D>
@@ -303,9 +317,7 @@ void Solver<D>::compute_deformation() {
     Eigen::Matrix<double, D, D> L = Eigen::Matrix<double, D, D>::Zero();
     for (int a = 0; a < w.count; ++a)
       L.noalias() += grid_.velocity_new[w.node[a]] * w.gradient[a].transpose();
-    Mat3 dF = Mat3::Identity();
-    dF.template topLeftCorner<D, D>() += dt_ * L;
-    increments_[p] = dF;
+    increments_[p] = step_increment<D>(dt_ * L);
   }
   if (volumetric_smoothing_)
     smooth_volumetric_strain();

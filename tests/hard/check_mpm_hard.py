@@ -4,7 +4,7 @@ Prints one table row: case | criterion | measured margin; exits 1 on a failed cr
 
 usage: check_mpm_hard.py extension OUTPUT_DIR
        check_mpm_hard.py large_shear OUTPUT_DIR
-       check_mpm_hard.py rotation OUTPUT_DIR"""
+       check_mpm_hard.py rotation STILL_TWIN_OUTPUT_DIR OUTPUT_DIR"""
 import csv
 import math
 import sys
@@ -78,10 +78,71 @@ def large_shear(out, failures):
             % (gamma[-1], late, early, late / early))
 
 
+def rotation(out, still):
+    """Turned rigidly by 360 degrees, against its twin held still (`still`, the same packings
+    over the same updates: a packing at rest drifts by itself, about 1 % of p0' here): at every
+    output (every 45 degrees) each point's stress is the twin's turned by the angle so far,
+    within 1 % of p0' in every component and in p', q; the volume stays (no spurious stretch)."""
+    failures = []
+    with h5py.File(out + "/results.h5") as f, h5py.File(still + "/results.h5") as g:
+        steps = sorted(k for k in f.keys() if k.startswith("step_"))
+        v0 = f[steps[0]]["volume"][()]
+        s0 = g[steps[0]]["stress"][()]
+        p0 = -np.mean(s0[:, :2].sum(axis=1) / 2)
+        total = __import__("json").load(open(out + "/summary.json"))["mpm_steps"]
+        worst_tensor = worst_invariant = worst_volume = drift = 0.0
+        for name in steps[1:]:
+            angle = 2 * math.pi * int(name[5:]) / total
+            c, s = math.cos(angle), math.sin(angle)
+            r = np.array([[c, -s], [s, c]])
+            for k in range(len(s0)):
+                at_rest = tensor2(g[name]["stress"][k])
+                turned = tensor2(f[name]["stress"][k])
+                worst_tensor = max(worst_tensor, np.abs(turned - r @ at_rest @ r.T).max() / p0)
+                a, b = invariants(turned), invariants(at_rest)
+                worst_invariant = max(worst_invariant, abs(a[0] - b[0]) / p0,
+                                      abs(a[1] - b[1]) / p0)
+                drift = max(drift, np.abs(at_rest - tensor2(s0[k])).max() / p0)
+            worst_volume = max(worst_volume, np.abs(f[name]["volume"][()] / v0 - 1).max())
+        turned_degrees = 360 * int(steps[-1][5:]) / total
+    if not (finite_everywhere(out) and finite_everywhere(still)):
+        failures.append("non-finite output")
+    if turned_degrees < 360 - 1e-9:
+        failures.append("turned only %.1f degrees" % turned_degrees)
+    if worst_tensor > 1e-2 or worst_invariant > 1e-2:
+        failures.append("stress off its twin's turned value by %.3g p0' (invariants %.3g p0')"
+                        % (worst_tensor, worst_invariant))
+    if worst_volume > 1e-9:
+        failures.append("volume changed by %.3g" % worst_volume)
+    row = ("rigid rotation by 360 degrees | sigma = R sigma_still R^T and p', q within 1e-2 p0' "
+           "every 45 degrees, volume kept | turned %.0f degrees, max |sigma - R sigma_still R^T| "
+           "%.1e p0', invariants %.1e p0', volume %.1e (the twin at rest drifts %.1e p0')"
+           % (turned_degrees, worst_tensor, worst_invariant, worst_volume, drift))
+    return row, failures
+
+
+def tensor2(voigt_or_matrix):
+    """The in-plane 2 x 2 block of a stored stress (3 x 3, or Voigt xx yy zz xy ...)."""
+    a = np.asarray(voigt_or_matrix)
+    if a.shape == (3, 3):
+        return a[:2, :2]
+    return np.array([[a[0], a[3]], [a[3], a[1]]])
+
+
+def invariants(sig):
+    """Mean pressure p' and deviatoric magnitude q of a 2D stress (as the history's columns)."""
+    p = -np.trace(sig) / 2
+    dev = sig + p * np.eye(2)
+    return p, math.sqrt(0.5 * np.sum(dev * dev))
+
+
 def main():
     kind, out = sys.argv[1], sys.argv[2]
     failures = []
-    row = {"extension": extension, "large_shear": large_shear}[kind](out, failures)
+    if kind == "rotation":
+        row, failures = rotation(sys.argv[3], out)  # rotation STILL_DIR OUTPUT_DIR
+    else:
+        row = {"extension": extension, "large_shear": large_shear}[kind](out, failures)
     print(row)
     for f in failures:
         print("FAIL:", f)

@@ -99,3 +99,24 @@ out = column("Hard case: a DEM-backed point carried out of the mesh", 1, 1, 2e-4
              {"every": 100, "history_every": 10, "checkpoint_every": 100})
 out["mesh"]["size"], out["mesh"]["cells"] = [0.1, 0.05], [2, 1]
 json.dump(out, open("mpm_leaves_mesh.json", "w"), indent=1)
+
+# Rigid rotation by 360 degrees: every node turns about the body's centre (boundary condition
+# `rotation`), so L is a pure spin at every point; 1000 steps of 2e-4 s, fields every 45 degrees.
+turn_steps, turn_dt = 1000, 2e-4
+omega = 2 * math.pi / (turn_steps * turn_dt)
+def turning(width):
+    return [{"type": "rotation", "center": [0.1, 0.1], "angular_velocity": omega,
+             "nodes": {"box": {"min": [0, 0], "max": [4 * width, 4 * width]}}}]
+turn = column("Hard case: a DEM-backed body turned rigidly by 360 degrees", 4, 2, turn_dt,
+              turn_steps, turning, {"every": turn_steps // 8, "history_every": 10})
+turn["mesh"].update(size=[0.2, 0.2], cells=[4, 4])
+turn["bodies"][0]["box"] = {"min": [0.05, 0.05], "max": [0.15, 0.15]}
+turn["_about"] = "omega = 2 pi / (%d x %g s): one full turn" % (turn_steps, turn_dt)
+json.dump(turn, open("mpm_rotation.json", "w"), indent=1)
+# Its twin at rest (the same nodes held still): what the packings do on their own over those
+# 1000 updates, against which the turned stresses are compared.
+still = json.loads(json.dumps(turn))
+still["title"] = "Hard case: the rigid-rotation body held still (its reference)"
+still["boundary_conditions"][0]["angular_velocity"] = 0.0
+still["_about"] = "the twin of mpm_rotation.json with omega = 0"
+json.dump(still, open("mpm_rotation_still.json", "w"), indent=1)
