@@ -4,6 +4,7 @@ Prints one table row: case | criterion | measured margin; exits 1 on a failed cr
 
 usage: check_mpm_hard.py extension OUTPUT_DIR
        check_mpm_hard.py large_shear OUTPUT_DIR
+       check_mpm_hard.py velocity_step OUTPUT_DIR
        check_mpm_hard.py rotation STILL_TWIN_OUTPUT_DIR OUTPUT_DIR"""
 import csv
 import math
@@ -121,6 +122,28 @@ def rotation(out, still):
     return row, failures
 
 
+def velocity_step(out, failures):
+    """Pressed from rest, then the top velocity reversed twice in one step each: no NaN, no
+    overshoot (after the first reversal no stress component exceeds 1.05 x the largest before
+    it: the body unloads), sub-steps bounded by the RVE's max (400)."""
+    with h5py.File(out + "/results.h5") as f:
+        steps = sorted(k for k in f.keys() if k.startswith("step_"))
+        number = [int(n[5:]) for n in steps]
+        stress = np.array([np.abs(f[n]["stress"][()]).max() for n in steps])
+        substeps = max(f[n]["dem_substeps_m1"][()].max() for n in steps)
+    reversal = number.index(50)  # t = T/4 of the 0.04 s square wave, 2e-4 s steps
+    before, after = stress[:reversal + 1].max(), stress[reversal + 1:].max()
+    if not finite_everywhere(out):
+        failures.append("non-finite output")
+    if after > 1.05 * before:
+        failures.append("stress overshoots after the reversal: %.4g > 1.05 x %.4g" % (after, before))
+    if substeps > 400:
+        failures.append("%d DEM sub-steps per update (max 400)" % substeps)
+    return ("velocity steps (0 to 10 cm/s, reversals of 20 cm/s) | no NaN, max |sigma| after the "
+            "first reversal <= 1.05 x before, sub-steps <= 400 | after/before %.3f, sub-steps "
+            "<= %d" % (after / before, substeps))
+
+
 def tensor2(voigt_or_matrix):
     """The in-plane 2 x 2 block of a stored stress (3 x 3, or Voigt xx yy zz xy ...)."""
     a = np.asarray(voigt_or_matrix)
@@ -142,7 +165,8 @@ def main():
     if kind == "rotation":
         row, failures = rotation(sys.argv[3], out)  # rotation STILL_DIR OUTPUT_DIR
     else:
-        row = {"extension": extension, "large_shear": large_shear}[kind](out, failures)
+        row = {"extension": extension, "large_shear": large_shear,
+               "velocity_step": velocity_step}[kind](out, failures)
     print(row)
     for f in failures:
         print("FAIL:", f)

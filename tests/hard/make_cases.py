@@ -120,3 +120,27 @@ still["title"] = "Hard case: the rigid-rotation body held still (its reference)"
 still["boundary_conditions"][0]["angular_velocity"] = 0.0
 still["_about"] = "the twin of mpm_rotation.json with omega = 0"
 json.dump(still, open("mpm_rotation_still.json", "w"), indent=1)
+
+# A velocity step on a boundary: the top of a 2-point column is pressed at 10 cm/s from rest
+# (a step at t = 0: strain rate 1/s), and the velocity reverses at once at t = 0.01 s (strain
+# 1 %) and again at 0.03 s: steps of 20 cm/s in one MPM step; 0.04 s in all. The RVEs'
+# sub-steps follow the strain rate (inertial number).
+def pressed(velocity, period):
+    def rows(width):
+        return [{"type": "roller", "direction": "x",
+                 "nodes": {"box": {"min": [0, 0], "max": [width, 2 * width]}}},
+                {"type": "fixed", "nodes": {"face": "y-"}},
+                row(2 * width, width, "y", -velocity, {"type": "square", "period": period})]
+    return rows
+step_rve = dict(RVE, substeps={"inertial_number": 0.001, "min": 10, "max": 400})
+jump = column("Hard case: velocity steps (pressed from rest, reversed twice) on the top of a "
+              "DEM-backed column", 2, 2, 2e-4, 200, pressed(0.1, 0.04),
+              {"every": 5, "history_every": 1}, rve=step_rve)
+json.dump(jump, open("mpm_velocity_step.json", "w"), indent=1)
+# Its broken variant: a step to 20 m/s (compression 4 % per MPM step) with sub-steps held at 10
+# and positions remapped: the DEM cannot follow, the health check must stop the run naming
+# the point.
+violent = column("Hard case (broken on purpose): a velocity step far too fast for the DEM", 2, 2,
+                 2e-4, 100, pressed(20.0, 0.4), {"every": 100},
+                 rve=dict(RVE, substeps={"fixed": 10}, affine_motion="remap_positions"))
+json.dump(violent, open("mpm_velocity_step_too_fast.json", "w"), indent=1)
