@@ -5,6 +5,7 @@ Prints one table row: case | criterion | measured margin; exits 1 on a failed cr
 usage: check_mpm_hard.py extension OUTPUT_DIR
        check_mpm_hard.py large_shear OUTPUT_DIR
        check_mpm_hard.py velocity_step OUTPUT_DIR
+       check_mpm_hard.py footing_deep OUTPUT_DIR
        check_mpm_hard.py rotation STILL_TWIN_OUTPUT_DIR OUTPUT_DIR"""
 import csv
 import math
@@ -144,6 +145,31 @@ def velocity_step(out, failures):
             "<= %d" % (after / before, substeps))
 
 
+def footing_deep(out, failures):
+    """A tiny DEM footing to d/B = 1.5: reached, no NaN, every point kept and inside the mesh
+    (0.3 x 0.45 m), the bearing pressure positive and finite throughout."""
+    rows = history(out)
+    depth = rows[-1]["settlement"] / 0.1
+    q = np.array([r["q"] for r in rows[1:]])
+    with h5py.File(out + "/results.h5") as f:
+        steps = sorted(k for k in f.keys() if k.startswith("step_"))
+        counts = {len(f[n]["positions"]) for n in steps}
+        x = np.concatenate([f[n]["positions"][()] for n in steps])
+    inside = (x[:, 0] >= 0).all() and (x[:, 0] <= 0.3).all() and (x[:, 1] >= 0).all() and \
+        (x[:, 1] <= 0.45).all()
+    if not finite_everywhere(out) or not np.all(np.isfinite(q)):
+        failures.append("non-finite output")
+    if depth < 1.5 - 1e-9:
+        failures.append("d/B reached only %.3f" % depth)
+    if len(counts) != 1 or not inside:
+        failures.append("points lost or outside the mesh: counts %s" % sorted(counts))
+    if q.min() <= 0:
+        failures.append("bearing pressure %.3g <= 0" % q.min())
+    return ("tiny DEM footing to d/B = 1.5 | reached, no NaN, no point lost or outside, q > 0 | "
+            "d/B %.3f, %d points throughout, q %.0f-%.0f kPa"
+            % (depth, counts.pop(), q.min() / 1e3, q.max() / 1e3))
+
+
 def tensor2(voigt_or_matrix):
     """The in-plane 2 x 2 block of a stored stress (3 x 3, or Voigt xx yy zz xy ...)."""
     a = np.asarray(voigt_or_matrix)
@@ -166,7 +192,7 @@ def main():
         row, failures = rotation(sys.argv[3], out)  # rotation STILL_DIR OUTPUT_DIR
     else:
         row = {"extension": extension, "large_shear": large_shear,
-               "velocity_step": velocity_step}[kind](out, failures)
+               "velocity_step": velocity_step, "footing_deep": footing_deep}[kind](out, failures)
     print(row)
     for f in failures:
         print("FAIL:", f)

@@ -144,3 +144,26 @@ violent = column("Hard case (broken on purpose): a velocity step far too fast fo
                  2e-4, 100, pressed(20.0, 0.4), {"every": 100},
                  rve=dict(RVE, substeps={"fixed": 10}, affine_motion="remap_positions"))
 json.dump(violent, open("mpm_velocity_step_too_fast.json", "w"), indent=1)
+
+# A tiny DEM footing pushed to d/B = 1.5: a rough strip (B = 0.1 m, half model) at 1 m/s into a
+# 0.3 x 0.35 m block of 42 DEM-backed points (h = B/2) under a 20 kPa surcharge, 0.15 s.
+footing = {
+    "title": "Hard case: a tiny DEM footing pushed to d/B = 1.5",
+    "dimension": 2,
+    "analysis": {"type": "mpm", "shape_function": "gimp", "damping": 0.1,
+                 "volumetric_smoothing": True, "time_step": {"cfl": 0.5}, "end": {"time": 0.15}},
+    "mesh": {"origin": [0, 0], "size": [0.3, 0.45], "cells": [6, 9]},
+    "materials": [{"id": 1, "type": "dem_rve", "packings": 1,
+                   "rve": dict(RVE, substeps={"inertial_number": 0.003, "min": 10, "max": 200})}],
+    "bodies": [{"material": 1, "box": {"min": [0, 0], "max": [0.3, 0.35]},
+                "points_per_cell": 1}],
+    "boundary_conditions": [
+        {"type": "roller", "direction": "x", "nodes": {"face": "x-"}},
+        {"type": "roller", "direction": "x", "nodes": {"face": "x+"}},
+        {"type": "fixed", "nodes": {"face": "y-"}},
+        {"type": "traction", "traction": [0, -2e4],
+         "points": {"min": [0.05, 0.3], "max": [0.3, 0.35]}}],
+    "rigid_bodies": [{"type": "footing", "center": [0.0], "width": [0.1], "base": 0.35,
+                      "velocity": 1.0, "interface": "rough", "keep_points_out": True}],
+    "output": {"every": 300, "history_every": 10}}
+json.dump(footing, open("mpm_footing_deep.json", "w"), indent=1)
