@@ -53,6 +53,7 @@ CASES = [
      [CHECK_LIQ, "--fraction", "0.01", "--cycles", "2", "--mean", "mean_stress", "--shear",
       "shear_stress", "--cycle-column", "cycle", "--history-in"], set_end_steps(3500)),
     ("mpm_extension", "mpm_extension.json", [CHECK_MPM, "extension"], None),
+    ("mpm_free_surface", "mpm_free_surface.json", [CHECK_MPM, "free_surface"], None),
     ("mpm_large_shear", "mpm_large_shear.json", [CHECK_MPM, "large_shear"], None),
     ("mpm_velocity_step", "mpm_velocity_step.json", [CHECK_MPM, "velocity_step"], None),
     ("mpm_footing_deep", "mpm_footing_deep.json", [CHECK_MPM, "footing_deep"], bigger_rve(100)),

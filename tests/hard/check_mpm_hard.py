@@ -6,6 +6,7 @@ usage: check_mpm_hard.py extension OUTPUT_DIR
        check_mpm_hard.py large_shear OUTPUT_DIR
        check_mpm_hard.py velocity_step OUTPUT_DIR
        check_mpm_hard.py footing_deep OUTPUT_DIR
+       check_mpm_hard.py free_surface OUTPUT_DIR
        check_mpm_hard.py rotation STILL_TWIN_OUTPUT_DIR OUTPUT_DIR"""
 import csv
 import math
@@ -170,6 +171,28 @@ def footing_deep(out, failures):
             % (depth, counts.pop(), q.min() / 1e3, q.max() / 1e3))
 
 
+def free_surface(out, failures):
+    """A column prepared at p0' with a free top, under gravity: from the second half of the run
+    on, no stress component above 5 % of p0' (its own weight is 1-2 %); no NaN; the kinetic
+    energy at the end below 1 % of its peak (at rest again)."""
+    with h5py.File(out + "/results.h5") as f:
+        steps = sorted(k for k in f.keys() if k.startswith("step_"))
+        s0 = f[steps[0]]["stress"][()]
+        p0 = -np.mean(s0[:, :2].sum(axis=1) / 2)
+        late = [n for n in steps if int(n[5:]) >= int(steps[-1][5:]) // 2]
+        stress = max(np.abs(f[n]["stress"][()]).max() for n in late) / p0
+    energy = np.array([r["kinetic_energy"] for r in history(out)])
+    if not finite_everywhere(out):
+        failures.append("non-finite output")
+    if stress > 0.05:
+        failures.append("stress %.3g p0' left after the unloading" % stress)
+    if energy[-1] > 0.01 * energy.max():
+        failures.append("still moving: kinetic energy %.3g of its peak" % (energy[-1] / energy.max()))
+    return ("free surface unloaded to zero stress | |sigma| <= 5e-2 p0' in the second half, no "
+            "NaN, kinetic energy at the end < 1 %% of its peak | max |sigma| %.1e p0', kinetic "
+            "energy %.1e of its peak" % (stress, energy[-1] / energy.max()))
+
+
 def tensor2(voigt_or_matrix):
     """The in-plane 2 x 2 block of a stored stress (3 x 3, or Voigt xx yy zz xy ...)."""
     a = np.asarray(voigt_or_matrix)
@@ -192,7 +215,8 @@ def main():
         row, failures = rotation(sys.argv[3], out)  # rotation STILL_DIR OUTPUT_DIR
     else:
         row = {"extension": extension, "large_shear": large_shear,
-               "velocity_step": velocity_step, "footing_deep": footing_deep}[kind](out, failures)
+               "velocity_step": velocity_step, "footing_deep": footing_deep,
+               "free_surface": free_surface}[kind](out, failures)
     print(row)
     for f in failures:
         print("FAIL:", f)

@@ -167,3 +167,16 @@ footing = {
                       "velocity": 1.0, "interface": "rough", "keep_points_out": True}],
     "output": {"every": 300, "history_every": 10}}
 json.dump(footing, open("mpm_footing_deep.json", "w"), indent=1)
+
+# A free surface unloaded: a column prepared at 100 kPa with nothing on its top (no surcharge)
+# springs up and falls back under gravity to rest at its own weight (1-2 kPa): the stress of a
+# DEM-backed body goes from p0' to almost zero without NaN or a lost grain. Damping 0.1, 0.3 s.
+def held_sides(width):
+    return [{"type": "roller", "direction": "x",
+             "nodes": {"box": {"min": [0, 0], "max": [width, 3 * width]}}},
+            {"type": "fixed", "nodes": {"face": "y-"}}]
+free = column("Hard case: the free surface of a DEM-backed column unloaded to zero stress", 3, 2,
+              2e-4, 1500, held_sides, {"every": 250, "history_every": 10})
+free["analysis"]["damping"] = 0.1
+free["gravity"] = [0, -9.81]
+json.dump(free, open("mpm_free_surface.json", "w"), indent=1)
