@@ -90,13 +90,13 @@ def main():
         sys.exit("hard_cases.py: unknown case(s) %s; known: %s" % (unknown, ", ".join(names)))
     os.makedirs(a.work, exist_ok=True)
     results = []
-    print("| case | criterion | measured margin | passed |\n|---|---|---|---|")
+    print("| run | case | criterion | measured margin | passed |\n|---|---|---|---|---|")
     for name, case, check, edit in CASES:
         if a.only and name not in a.only:
             continue
         r = run_case(os.path.abspath(a.mpm_lig), a.work, name, case, check, edit, a.long)
         cells = [c.replace("|", "\\|") for c in r["row"].split(" | ")]
-        print("| " + " | ".join(cells + [""] * (3 - len(cells))) + " | %s |" %
+        print("| %s | " % name + " | ".join(cells + [""] * (3 - len(cells))) + " | %s |" %
               ("yes" if r["passed"] else "NO: " + "; ".join(r.get("failures", []))), flush=True)
         results.append(dict(r, variant="long" if a.long else "test"))
     if a.json:
