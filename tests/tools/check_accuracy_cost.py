@@ -4,7 +4,8 @@ curves and series with closed forms, bad input (exit 2, nothing created), and on
 sweep of drained biaxial element tests end to end.
 
 usage: check_accuracy_cost.py CASE WORK_DIR [MPM_LIG]
-  CASE: synthetic | resume | measures | bad_path | bad_value | bad_reference | real | real_bad
+  CASE: synthetic | resume | measures | cost_model | bad_path | bad_value | bad_reference | real |
+        real_bad
 """
 import json
 import math
@@ -151,6 +152,32 @@ def measures(work):
     close(error(SERIES, np.array([11.0, 9.9]), sref), math.sqrt((0 + 0.1 ** 2) / 2), "series error")
 
 
+def cost_model(work):
+    """The cost model with a fixed cost per update, on costs of known form: exact data is
+    predicted exactly (leave one out); a variant 30 % dearer than the law is predicted by the
+    others' exact law; with two variants the rate model stands in; the rate model alone misses
+    the fixed cost."""
+    from mpm_lig_post.tradeoff import predict_costs, predict_costs_with_updates
+    rate, per_update = 5e6, 2e-3
+    ps = [2e6, 4e6, 9e6, 2.6e7, 1.1e7]
+    up = [60, 60, 120, 60, 240]
+    exact = [p / rate + u * per_update for p, u in zip(ps, up)]
+    t = list(exact)
+    _, errors, fitted = predict_costs_with_updates(ps, up, t)
+    expect(all(abs(e) < 1e-9 for e in errors), f"exact costs mispredicted: {errors}")
+    close(fitted[0], rate, "fitted rate", 1e-9)
+    close(fitted[1], per_update, "fitted cost per update", 1e-9)
+    t[2] *= 1.3
+    _, errors, _ = predict_costs_with_updates(ps, up, t)
+    close(errors[2], 1 / 1.3 - 1, "the dear variant's error", 1e-9)
+    _, two, _ = predict_costs_with_updates(ps[:2], up[:2], t[:2])
+    _, rate_only, _ = predict_costs(ps[:2], t[:2])
+    expect(two == rate_only, "two variants: the rate model stands in")
+    # The rate model alone misses the fixed cost: the 60-update variants with few steps worst.
+    _, rate_errors, _ = predict_costs(ps, exact)
+    expect(max(abs(e) for e in rate_errors) > 0.1, "the rate model should miss the fixed cost")
+
+
 def bad_path(work):
     study, out = fake_study(work, sweep=[{"path": "rve.substeps.inertia", "values": [1e-4]}],
                             reference={"rve.substeps.inertia": 1e-4})
@@ -237,7 +264,8 @@ def real_bad(work, mpm_lig):
 if __name__ == "__main__":
     case, work = sys.argv[1], os.path.join(sys.argv[2], sys.argv[1])
     extra = sys.argv[3:]
-    {"synthetic": synthetic, "resume": resume, "measures": measures, "bad_path": bad_path,
+    {"synthetic": synthetic, "resume": resume, "measures": measures, "cost_model": cost_model,
+     "bad_path": bad_path,
      "bad_value": bad_value, "bad_reference": bad_reference, "real": real,
      "real_bad": real_bad}[case](work, *extra)
     print(f"{case}: ok")

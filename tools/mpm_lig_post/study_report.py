@@ -11,6 +11,7 @@ from .errors import InputError
 from .quantities import SCALAR, Run
 from .tables import read_json
 from .tradeoff import (cheapest_within, error, noise_floor, pareto_front, predict_costs,
+                       predict_costs_with_updates,
                        reference_value)
 
 TARGETS = (0.01, 0.05, 0.15)
@@ -108,12 +109,25 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
         for r, p, e in zip(done, predicted, errs):
             r["predicted_stepping_core_seconds"], r["prediction_error"] = p, e
         worst = max(done, key=lambda r: abs(r["prediction_error"]))
+        predicted2, errs2, fitted = predict_costs_with_updates(
+            [r["particle_steps"] for r in done], [r["rve_steps"] for r in done],
+            [r[timed] for r in done])
+        for r, p, e in zip(done, predicted2, errs2):
+            r["predicted_with_updates"], r["prediction_error_with_updates"] = p, e
+        worst2 = max(done, key=lambda r: abs(r["prediction_error_with_updates"]))
         result["cost_model"] = {
             "rule": "stepping core-s = particle-steps / rate; rate = median particle-steps per "
                     "stepping core-second of the other variants (leave one out)",
             "timed_by": timed,
             "rate_particle_steps_per_core_second": rate,
-            "worst_prediction_error": worst["prediction_error"], "worst_variant": worst["name"]}
+            "worst_prediction_error": worst["prediction_error"], "worst_variant": worst["name"],
+            "with_updates": {
+                "rule": "stepping core-s = particle-steps / rate + RVE updates x t_update, "
+                        "least squares on the other variants (leave one out)",
+                "rate_particle_steps_per_core_second": fitted[0] if fitted else None,
+                "seconds_per_update": fitted[1] if fitted else None,
+                "worst_prediction_error": worst2["prediction_error_with_updates"],
+                "worst_variant": worst2["name"]}}
     return result
 
 
@@ -155,6 +169,12 @@ def print_table(result, measures):
         print(f"cost model: {m['rate_particle_steps_per_core_second']:.4g} particle-steps per "
               f"core-s; worst prediction error {100 * m['worst_prediction_error']:+.1f} % "
               f"({m['worst_variant']})")
+        w = m["with_updates"]
+        fitted = ("" if w["seconds_per_update"] is None else
+                  f"{w['rate_particle_steps_per_core_second']:.4g} particle-steps per core-s + "
+                  f"{1e3 * w['seconds_per_update']:.3g} ms per RVE update; ")
+        print(f"cost model with a fixed cost per update: {fitted}worst prediction error "
+              f"{100 * w['worst_prediction_error']:+.1f} % ({w['worst_variant']})")
 
 
 def _jsonable(x):
@@ -174,7 +194,8 @@ def _jsonable(x):
 def write_csv(result, measures, path):
     cost = ["wall_seconds", "core_seconds", "stepping_core_seconds", "cpu_seconds",
             "stepping_cpu_seconds", "particle_steps",
-            "predicted_stepping_core_seconds", "prediction_error"]
+            "predicted_stepping_core_seconds", "prediction_error", "rve_steps",
+            "predicted_with_updates", "prediction_error_with_updates"]
     knobs = result["knobs"]
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
@@ -246,12 +267,12 @@ def write_markdown(result, measures, path):
     """The table as Markdown (for docs): settings, each quantity with its error, costs."""
     names = [q.name for q in measures]
     lines = ["| variant | settings | " + " | ".join(f"{n} (error)" for n in names)
-             + " | particle-steps | core-s | CPU s |",
-             "|---" * (len(names) + 5) + "|"]
+             + " | particle-steps | core-s | CPU s | model error (rate / + updates) |",
+             "|---" * (len(names) + 6) + "|"]
     for r in result["variants"]:
         if r["status"] != "done":
             lines.append(f"| {r['name']} | {r['label']} | " + " | ".join("" for _ in names)
-                         + f" | {r['status']} | | |")
+                         + f" | {r['status']} | | | |")
             continue
         cells = []
         for n in names:
@@ -261,7 +282,9 @@ def write_markdown(result, measures, path):
         cpu = "-" if r["cpu_seconds"] is None else f"{r['cpu_seconds']:.0f}"
         lines.append(f"| {r['name']}{' (ref)' if r['reference'] else ''} | {r['label']} | "
                      + " | ".join(cells)
-                     + f" | {r['particle_steps']:.3g} | {r['core_seconds']:.0f} | {cpu} |")
+                     + f" | {r['particle_steps']:.3g} | {r['core_seconds']:.0f} | {cpu} | "
+                     + f"{_pct(r.get('prediction_error'))} / "
+                     + f"{_pct(r.get('prediction_error_with_updates'))} |")
     lines.append("")
     lines.append("| quantity | noise floor | Pareto front | cheapest within 1 % / 5 % / 15 % |")
     lines.append("|---|---|---|---|")

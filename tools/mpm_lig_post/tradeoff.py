@@ -103,3 +103,29 @@ def predict_costs(particle_steps, core_seconds):
         predicted.append(p / rate)
         errors.append(p / rate / core_seconds[i] - 1.0)
     return predicted, errors, float(np.median(rates))
+
+
+def predict_costs_with_updates(particle_steps, updates, core_seconds):
+    """The rate model plus a fixed cost per RVE update (the engine's run set-up, the deformation
+    fix, reading the stress and the health measures): core-s = particle-steps / rate +
+    updates x t_update, both fitted by least squares to the OTHER variants (leave one out).
+    Where fewer than two others are left, or the fit is not positive, the rate model stands in.
+    Returns (predicted core-s, relative prediction error) per variant, and (rate, t_update)
+    fitted to all variants (None when that fit is not positive)."""
+    ps, up, t = (np.asarray(a, dtype=float) for a in (particle_steps, updates, core_seconds))
+    fallback, _, _ = predict_costs(particle_steps, core_seconds)
+
+    def fit(rows):
+        if len(rows) < 2:
+            return None
+        (a, b), *_ = np.linalg.lstsq(np.vstack([ps[rows], up[rows]]).T, t[rows], rcond=None)
+        return (a, b) if a > 0 and b >= 0 else None
+
+    predicted, errors = [], []
+    for i in range(len(t)):
+        coef = fit([j for j in range(len(t)) if j != i])
+        p = coef[0] * ps[i] + coef[1] * up[i] if coef else fallback[i]
+        predicted.append(float(p))
+        errors.append(float(p / t[i] - 1.0))
+    overall = fit(list(range(len(t))))
+    return predicted, errors, (1.0 / overall[0], overall[1]) if overall else None
