@@ -59,6 +59,7 @@ class DemRveMaterial final : public materials::Material {
   std::vector<std::string> state_names() const override;
   double state(std::size_t point, std::size_t k) const override;
   bool has_snapshots() const override { return true; }
+  bool accepts_initial_stress() const override { return false; }
   //! Its checkpoint holds every RVE (write_checkpoint / restore_checkpoint).
   bool checkpointable() const override { return true; }
   void write_snapshot(std::size_t point, const std::string& prefix) override;

@@ -75,6 +75,8 @@ class Material {
   virtual Mat3 initial_stress(std::size_t /*point*/) const { return Mat3::Zero(); }
   //! Impose an initial stress (for example K0) on one point, where the material allows it.
   virtual void set_stress(std::size_t point, const Mat3& sigma) = 0;
+  //! Whether set_stress() can give its points a start stress (a DEM point's is its packing's).
+  virtual bool accepts_initial_stress() const { return true; }
   //! Put back a stress this material computed itself (a resumed run), bit for bit.
   virtual void restore_stress(std::size_t point, const Mat3& sigma) { set_stress(point, sigma); }
 

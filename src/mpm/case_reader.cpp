@@ -193,6 +193,17 @@ bool overlap(const Box& a, const Box& b, int dimension) {
   return true;
 }
 
+//! A uniform start stress: Voigt xx yy zz xy xz yz [Pa], tension positive; in 2D (plane strain)
+//! xz and yz must be 0.
+Mat3 read_initial_stress(const CaseNode& b, int dimension) {
+  const std::vector<double> v = read_vector(b, "initial_stress", 6);
+  if (dimension == 2 && (v[4] != 0.0 || v[5] != 0.0))
+    b.fail("initial_stress", "xz and yz must be 0 in plane strain");
+  Mat3 s;
+  s << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
+  return s;
+}
+
 void read_bodies(const CaseNode& root, MpmCase& c) {
   const auto nodes = root.children("bodies");
   if (nodes.empty())
@@ -215,6 +226,8 @@ void read_bodies(const CaseNode& root, MpmCase& c) {
       body.profile_start = p.get<double>("start");
       body.profile_length = p.positive("length");
     }
+    if (b.has("initial_stress"))
+      body.initial_stress = read_initial_stress(b, c.dimension);
     for (std::size_t k = 0; k < c.bodies.size(); ++k) {
       if (overlap(body.box, c.bodies[k].box, c.dimension))
         b.fail("box", "overlaps bodies[" + std::to_string(k) + "]");
@@ -438,6 +451,14 @@ MpmProblem read_case(const CaseNode& root, const materials::MaterialRegistry& re
   read_materials(root, registry, c, problem.materials);
   check_cfl(root, c, problem.materials);
   read_bodies(root, c);
+  const auto body_nodes = root.children("bodies");
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    const materials::Material& m = *problem.materials[c.bodies[k].material];
+    if (c.bodies[k].initial_stress && !m.accepts_initial_stress())
+      body_nodes[k].fail("initial_stress", "material type '" + m.type() +
+                                               "' starts from its own stress (a DEM point from "
+                                               "its packing's)");
+  }
   read_boundary_conditions(root, c);
   read_rigid_bodies(root, c);
   read_output(root, c, problem.materials);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,8 @@ struct Body {
   Box box;
   int points_per_cell = 2;
   std::vector<double> velocity;  //!< uniform part
+  //! Start stress of every point (Cauchy, tension positive); empty: the material's own.
+  std::optional<Mat3> initial_stress;
   //! First axial mode: v += amplitude sin(pi/2 (x_axis - start) / length).
   bool has_profile = false;
   std::vector<double> profile_amplitude;

@@ -46,7 +46,10 @@ void fill_body(const MpmCase& c, MaterialSet& materials, int body_index, Particl
     p.volume.push_back(volume);
     p.volume0.push_back(volume);
     p.deformation.push_back(Mat3::Identity());
-    p.stress.push_back(material.initial_stress(first + static_cast<std::size_t>(k)));
+    const std::size_t point = first + static_cast<std::size_t>(k);
+    if (body.initial_stress)
+      material.set_stress(point, *body.initial_stress);
+    p.stress.push_back(body.initial_stress ? *body.initial_stress : material.initial_stress(point));
     p.material.push_back(body.material);
     p.material_point.push_back(first + static_cast<std::size_t>(k));
     p.body.push_back(body_index);
