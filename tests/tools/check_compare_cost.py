@@ -1,0 +1,64 @@
+"""Checks of tools/compare_cost.py on footing runs of known load curves: the particle-steps ratio
+and the plateau / peak errors against the reference; bad input (exit 2, named).
+
+usage: check_compare_cost.py WORK_DIR"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOL = os.path.join(HERE, "..", "..", "tools", "compare_cost.py")
+CASE = {"analysis": {"type": "mpm"}, "rigid_bodies": [{"type": "footing", "width": [0.2]}],
+        "boundary_conditions": [{"type": "traction", "traction": [0, -1e5]}]}
+
+
+def expect(condition, message):
+    if not condition:
+        sys.exit("FAILED: " + message)
+
+
+def footing_run(d, level, peak, particle_steps):
+    """q/q_s = level at s/B = 0.005, 0.015, ... 0.505 except `peak` at s/B = 0.205 (no row on
+    the plateau window's ends: 30 rows inside it)."""
+    os.makedirs(d)
+    with open(os.path.join(d, "history.csv"), "w") as f:
+        f.write("step,settlement,q\n")
+        for k in range(51):
+            s_over_b = 0.005 + 0.01 * k
+            ratio = peak if k == 20 else level
+            f.write(f"{k},{s_over_b * 0.2!r},{ratio * 1e5!r}\n")
+    with open(os.path.join(d, "summary.json"), "w") as f:
+        json.dump({"dem_particle_steps": particle_steps, "wall_seconds": 1.0}, f)
+
+
+def main():
+    work = sys.argv[1]
+    shutil.rmtree(work, ignore_errors=True)
+    footing_run(os.path.join(work, "ref"), 10.0, 12.0, 1e9)
+    footing_run(os.path.join(work, "cheap"), 10.3, 12.6, 2e8)
+    with open(os.path.join(work, "ref", "case.json"), "w") as f:
+        json.dump(CASE, f)
+    out = os.path.join(work, "out.json")
+    r = subprocess.run(["/usr/bin/python3", TOOL, os.path.join(work, "ref"),
+                        os.path.join(work, "cheap"), "--json", out], capture_output=True, text=True)
+    expect(r.returncode == 0, f"exit {r.returncode}: {r.stderr}")
+    rows = json.load(open(out))
+    cheap = rows[1]
+    expect(abs(cheap["particle_steps_ratio"] - 0.2) < 1e-12, f"ratio {cheap['particle_steps_ratio']}")
+    ref_plateau = (29 * 10.0 + 12.0) / 30
+    expect(abs(rows[0]["values"]["plateau q/q_s"] - ref_plateau) < 1e-9, "reference plateau")
+    expect(abs(cheap["errors"]["peak q/q_s"] - 0.05) < 1e-9, f"peak error {cheap['errors']}")
+    expect(abs(cheap["errors"]["plateau q/q_s"] - ((29 * 10.3 + 12.6) / 30 / ref_plateau - 1))
+           < 1e-9, f"plateau error {cheap['errors']}")
+    r = subprocess.run(["/usr/bin/python3", TOOL, os.path.join(work, "cheap"),
+                        os.path.join(work, "ref")], capture_output=True, text=True)
+    expect(r.returncode == 2 and "case.json: no such case file" in r.stderr, f"no case: {r.stderr}")
+    r = subprocess.run(["/usr/bin/python3", TOOL, os.path.join(work, "ref"),
+                        os.path.join(work, "nowhere")], capture_output=True, text=True)
+    expect(r.returncode == 2 and "nowhere: no such output directory" in r.stderr, r.stderr)
+    print("compare_cost: ok")
+
+
+main()
