@@ -70,8 +70,9 @@ Options parse(int argc, char** argv) {
       throw std::invalid_argument("unknown argument '" + a + "'");
   }
   if (o.case_file.empty() || o.substeps.size() < 2 || o.updates < 1 || o.repeats < 1)
-    throw std::invalid_argument("usage: bench_rve_update CASE.json [--grains N] [--updates M] "
-                                "[--substeps 1,20,100] [--repeats R] [--json FILE]");
+    throw std::invalid_argument(
+        "usage: bench_rve_update CASE.json [--grains N] [--updates M] "
+        "[--substeps 1,20,100] [--repeats R] [--json FILE]");
   return o;
 }
 
@@ -92,8 +93,7 @@ double time_updates(const rve::RveSpec& spec, const std::string& packing, int n,
     if (observe)
       r->check_blow_up(r->observe());
   }
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
-         updates;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / updates;
 }
 
 //! Least-squares line y = a + b x.
@@ -152,22 +152,22 @@ int main(int argc, char** argv) {
   std::filesystem::remove(packing);
   const auto [fixed_deform, per_step] = line(x, deform_only);
   const auto [fixed_total, per_step_total] = line(x, with_observe);
-  std::printf("%ld grains, %d updates x %d repeats (medians)\n", spec.grains, o.updates,
-              o.repeats);
+  std::printf("%ld grains, %d updates x %d repeats (medians)\n", spec.grains, o.updates, o.repeats);
   std::printf("%9s %14s %16s %18s\n", "substeps", "deform ms", "+ observe ms", "fixed share");
   for (std::size_t i = 0; i < x.size(); ++i) {
     const double share = fixed_total / with_observe[i];
-    std::printf("%9.0f %14.3f %16.3f %17.1f%%\n", x[i], 1e3 * deform_only[i],
-                1e3 * with_observe[i], 100 * share);
+    std::printf("%9.0f %14.3f %16.3f %17.1f%%\n", x[i], 1e3 * deform_only[i], 1e3 * with_observe[i],
+                100 * share);
     rows.push_back({{"substeps", x[i]},
                     {"deform_seconds", deform_only[i]},
                     {"update_seconds", with_observe[i]},
                     {"fixed_share", share}});
   }
-  std::printf("fixed cost per update: deform %.3f ms, observe %.3f ms; per DEM step %.4f ms "
-              "(%.3g particle-steps/s)\n",
-              1e3 * fixed_deform, 1e3 * (fixed_total - fixed_deform), 1e3 * per_step,
-              spec.grains / per_step);
+  std::printf(
+      "fixed cost per update: deform %.3f ms, observe %.3f ms; per DEM step %.4f ms "
+      "(%.3g particle-steps/s)\n",
+      1e3 * fixed_deform, 1e3 * (fixed_total - fixed_deform), 1e3 * per_step,
+      spec.grains / per_step);
   if (!o.json_file.empty()) {
     std::ofstream out(o.json_file);
     out << nlohmann::json{{"grains", spec.grains},

@@ -100,8 +100,8 @@ TEST(DemRveCoupling, OnePointEqualsElementTestOnAClone) {
   // (to round-off): dF = (I - L dt/2)^-1 (I + L dt/2).
   const Eigen::Matrix2d half = 0.5 * kTimeStep * velocity_gradient();
   Mat3 expected = Mat3::Identity();
-  expected.topLeftCorner<2, 2>() = (Eigen::Matrix2d::Identity() - half).inverse() *
-                                   (Eigen::Matrix2d::Identity() + half);
+  expected.topLeftCorner<2, 2>() =
+      (Eigen::Matrix2d::Identity() - half).inverse() * (Eigen::Matrix2d::Identity() + half);
   for (const Mat3& dF : increments)
     EXPECT_LT((dF - expected).cwiseAbs().maxCoeff(), 1e-14);
 
