@@ -71,7 +71,7 @@ class Engine {
   //! All contacts with their forces (for Σ r⊗f / V and force-chain snapshots), on every rank
   //! of the instance. Forces are evaluated at the current positions and velocities, without
   //! touching the contact history (LIGGGHTS: compute pair/gran/local; LAMMPS: compute
-  //! pair/local + property/local, set up by a `run 0 post no` at the first call). After a run
+  //! pair/local + property/local, set up by a `run 0 post no` at every call). After a run
   //! under `fix deform` the periodic images still sit in the previous step's cell (LAMMPS: the
   //! branch is the one the force used) and the virial of the last step used mid-step
   //! velocities in its damping terms: after a `run 0` both agree to round-off. Needs a run

@@ -68,8 +68,13 @@ void LammpsEngine::define_contact_computes() {
 }
 
 std::vector<Contact> LammpsEngine::contacts() {
+  // Every call sets up again: the computes' occasional neighbour list is otherwise not rebuilt
+  // after later runs, and pair granular's single() then meets atom indices beyond the current
+  // ghosts ("Not enough atoms for pair granular single function", seen after ~50 MPM updates).
   if (!computes_defined_)
     define_contact_computes();
+  else
+    command("run 0 post no");
   lammps_extract_compute(handle(), const_cast<char*>(kContactForces), 2, 2);
   lammps_extract_compute(handle(), const_cast<char*>(kContactIds), 2, 2);
   const int local_rows =
