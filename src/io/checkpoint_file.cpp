@@ -64,6 +64,10 @@ double CheckpointFile::get(const std::string& name) const {
   return value;
 }
 
+bool CheckpointFile::has_attribute(const std::string& name) const {
+  return H5Aexists(file_, name.c_str()) > 0;
+}
+
 void CheckpointFile::close() {
   const herr_t status = H5Fclose(file_);
   file_ = -1;

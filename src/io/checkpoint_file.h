@@ -26,6 +26,8 @@ class CheckpointFile {
   //! A scalar attribute of the file's root group.
   void set(const std::string& name, double value);
   double get(const std::string& name) const;
+  //! Whether the root group has the attribute `name`.
+  bool has_attribute(const std::string& name) const;
   //! The first dataset or attribute holding a value that is not finite (NaN, inf), or "".
   std::string first_non_finite() const;
   //! Close now (flushes); throws if HDF5 reports an error.

@@ -108,6 +108,7 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
     footings.insert(footings.end(), f.reaction().data(), f.reaction().data() + D);
   }
   file.write("footings", footings);
+  file.set("format", CheckpointFolder::kFormat);
   file.set("time", solver.time());
   file.set("steps", static_cast<double>(solver.steps()));
   file.set("history_rows", static_cast<double>(recorder.history_rows));

@@ -16,6 +16,9 @@ struct CheckpointFolder {
   static constexpr const char* kManifest = "MANIFEST.sha256";
   static constexpr const char* kCase = "case.json";
   static constexpr const char* kState = "mpm.h5";
+  //! Layout of a checkpoint, kept in mpm.h5 ("format"; absent = 1). 2: a DEM point keeps its
+  //! grains' exact placement beside its engine restart (point_<i>.restart.placement).
+  static constexpr int kFormat = 2;
 
   //! `run_dir/checkpoints`.
   static std::string root(const std::string& run_dir);

@@ -53,6 +53,12 @@ void check_case(const MpmCase& c, const std::string& folder) {
 void check_state(const MpmCase& c, const std::string& folder) {
   const io::CheckpointFile state(folder + "/" + CheckpointFolder::kState,
                                  io::CheckpointFile::Mode::read);
+  const int format = state.has_attribute("format") ? static_cast<int>(state.get("format")) : 1;
+  if (format != CheckpointFolder::kFormat)
+    throw ResumeError("checkpoint '" + folder + "' has layout " + std::to_string(format) +
+                      " (an older mpm_lig wrote it); this build reads layout " +
+                      std::to_string(CheckpointFolder::kFormat) +
+                      ": run the case from the start with another --output");
   const std::string bad = state.first_non_finite();
   if (!bad.empty())
     throw ResumeError("checkpoint '" + folder + "' holds a value that is not finite in '" + bad +

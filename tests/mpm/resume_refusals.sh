@@ -98,6 +98,16 @@ PY
 digest "$work/run" > "$work/before"
 resume_refused "not finite in 'stress'"
 
+scenario="checkpoint of an older layout (no format, checksums made to match)"
+fresh; /usr/bin/python3 - "$work/run/checkpoints/step_16/mpm.h5" <<'PY'
+import h5py, sys
+with h5py.File(sys.argv[1], "r+") as f:
+    del f.attrs["format"]
+PY
+(cd "$work/run/checkpoints/step_16" && find . -type f ! -name MANIFEST.sha256 -printf '%P\n' | sort | xargs sha256sum > MANIFEST.sha256)
+digest "$work/run" > "$work/before"
+resume_refused "has layout 1 \(an older mpm_lig wrote it\); this build reads layout 2"
+
 scenario="--resume of a missing folder"
 expect 2 "--resume $work/no_such_dir: no such folder" "$work/case.json" --resume "$work/no_such_dir"
 [ ! -e "$work/no_such_dir" ] || fail "the folder was created"
