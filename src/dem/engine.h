@@ -66,12 +66,13 @@ class Engine {
                              const std::vector<double>& values) = 0;
   //! Integer per-atom properties ("image": the packed periodic image flags), as gather_atoms.
   virtual std::vector<int> gather_atom_ints(const std::string& name, int count) = 0;
+  //! Set an integer per-atom property, as scatter_atoms.
   virtual void scatter_atom_ints(const std::string& name, int count,
                                  const std::vector<int>& values) = 0;
   //! All contacts with their forces (for Σ r⊗f / V and force-chain snapshots), on every rank
   //! of the instance. Forces are evaluated at the current positions and velocities, without
   //! touching the contact history (LIGGGHTS: compute pair/gran/local; LAMMPS: compute
-  //! pair/local + property/local, set up by a `run 0 post no` at every call). After a run
+  //! pair/local + property/local, set up by a `run 0 post no` after every run). After a run
   //! under `fix deform` the periodic images still sit in the previous step's cell (LAMMPS: the
   //! branch is the one the force used) and the virial of the last step used mid-step
   //! velocities in its damping terms: after a `run 0` both agree to round-off. Needs a run

@@ -50,6 +50,7 @@ class LammpsEngine final : public LibraryEngine {
  private:
   void define_contact_computes();
   bool computes_defined_ = false;
+  long runs_at_setup_ = -1;  //!< runs() right after the contacts' last set-up
 };
 
 // pair granular's single() gives the normal force as fx,fy,fz and, as extra values, the
@@ -68,13 +69,16 @@ void LammpsEngine::define_contact_computes() {
 }
 
 std::vector<Contact> LammpsEngine::contacts() {
-  // Every call sets up again: the computes' occasional neighbour list is otherwise not rebuilt
-  // after later runs, and pair granular's single() then meets atom indices beyond the current
-  // ghosts ("Not enough atoms for pair granular single function", seen after ~50 MPM updates).
+  // A set-up after every run: the computes' occasional neighbour list is otherwise not rebuilt,
+  // and pair granular's single() then meets atom indices beyond the current ghosts ("Not enough
+  // atoms for pair granular single function", seen after ~50 MPM updates). Not after a set-up
+  // of its own, so that reading the contacts twice (a snapshot after the health check) changes
+  // nothing.
   if (!computes_defined_)
     define_contact_computes();
-  else
+  else if (runs() != runs_at_setup_)
     command("run 0 post no");
+  runs_at_setup_ = runs();
   lammps_extract_compute(handle(), const_cast<char*>(kContactForces), 2, 2);
   lammps_extract_compute(handle(), const_cast<char*>(kContactIds), 2, 2);
   const int local_rows =

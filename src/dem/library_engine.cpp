@@ -32,6 +32,8 @@ void LibraryEngine::adopt(void* handle, FILE** engine_screen) {
 }
 
 void LibraryEngine::command(const std::string& line) {
+  if (line.compare(0, 4, "run ") == 0)
+    ++runs_;
   lammps_command(handle_, const_cast<char*>(line.c_str()));
 }
 

@@ -46,6 +46,8 @@ class LibraryEngine : public ModuleEngine {
                                          int columns);
   //! Throws unless `size` = atoms × `count`.
   void check_atom_values(std::size_t size, int count, const std::string& name) const;
+  //! `run` commands issued so far (set-ups included).
+  long runs() const { return runs_; }
   //! Positions of all atoms, ordered by atom id (ids 1..N).
   std::vector<Vec3> positions_by_id();
 
@@ -54,6 +56,7 @@ class LibraryEngine : public ModuleEngine {
   EngineOptions options_;
   OutputRing output_;
   void* handle_ = nullptr;
+  long runs_ = 0;
 };
 
 //! Split a script into input lines, joining lines continued with a trailing '&'.

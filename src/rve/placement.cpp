@@ -12,8 +12,9 @@
 namespace mpm_lig::rve {
 namespace {
 
-// Layout: the magic line, the grain count (int64), 3 doubles then 1 int32 per grain, all in
-// the machine's byte order (a checkpoint is resumed on the machine family that wrote it).
+// Layout: the magic line, the grain count (int64), then all positions (3 doubles per grain, by
+// grain id), then all image flags (1 int32 per grain), in the machine's byte order (a
+// checkpoint is resumed on the machine family that wrote it).
 constexpr char kMagic[] = "mpm_lig placement 1\n";
 constexpr std::size_t kMagicSize = sizeof kMagic - 1;
 
@@ -64,9 +65,13 @@ void write_placement(const Placement& placement, const std::string& file, MPI_Co
       failure = e.what();
     }
   }
-  MPI_Barrier(comm);
-  if (!failure.empty())
-    throw std::runtime_error(failure);
+  // Rank 0's failure ends the write on every rank of the RVE alike.
+  int failed = failure.empty() ? 0 : 1;
+  MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+  if (failed)
+    throw std::runtime_error(rank == 0 ? failure
+                                       : "the grain placement '" + file +
+                                             "' could not be written (rank 0 of the RVE says why)");
   const std::string problem = size_problem(file, static_cast<long>(placement.image.size()));
   if (!problem.empty())
     throw std::runtime_error("the grain placement just written: " + problem);
