@@ -100,11 +100,18 @@ def main():
                      "peak_s": s, "peak_t": t, "youngs_modulus": young, "poisson_ratio": poisson,
                      "mobilised_friction_deg": math.degrees(math.asin(t / s))})
     slope, intercept = np.polyfit([r["peak_s"] for r in rows], [r["peak_t"] for r in rows], 1)
-    phi = math.asin(min(max(slope, 0.0), 0.999))
+    if not 0.0 < slope < 1.0:
+        raise InputError(f"the peak states give sin phi' = {slope:.3g}: no Mohr-Coulomb fit "
+                         "(runs at clearly different pressures of one packing are needed)")
+    phi = math.asin(slope)
     cohesion = intercept / math.cos(phi)
     run, summary, *_ = runs[ref]
-    psi = max_dilatancy()(run)
-    psi = 0.0 if psi is None else min(max(psi, 0.0), math.degrees(phi))
+    measured_psi = max_dilatancy()(run)
+    psi = 0.0 if measured_psi is None else min(max(measured_psi, 0.0), math.degrees(phi))
+    notes = []
+    if measured_psi is None or psi != measured_psi:
+        notes.append("psi " + ("not measurable (the run is too short)" if measured_psi is None
+                               else f"{measured_psi:.2f} deg kept within 0 ... phi'"))
     void_ratio = summary["preparation"]["void_ratio"]
     material = {"id": a.id, "type": "mohr_coulomb",
                 "density": round(a.grain_density / (1.0 + void_ratio), 1),
@@ -121,6 +128,10 @@ def main():
               f"{r['poisson_ratio']:6.3f}{'  (reference)' if i == ref else ''}")
     print(f"Mohr-Coulomb fit of {len(rows)} peak states: phi' = {math.degrees(phi):.2f} deg, "
           f"c' = {cohesion / 1e3:.2f} kPa" + (" (negative: set to 0)" if cohesion < 0 else ""))
+    if not 0.0 <= rows[ref]["poisson_ratio"] <= 0.49:
+        notes.append(f"nu {rows[ref]['poisson_ratio']:.3f} kept within 0 ... 0.49")
+    for n in notes:
+        print("note: " + n)
     print(json.dumps(material))
     if a.json:
         with open(a.json, "w") as f:

@@ -41,6 +41,9 @@ def main():
         if not os.path.isdir(d):
             raise InputError(f"{d}: no such output directory")
         summary = read_json(os.path.join(d, "summary.json"))
+        if not summary.get("dem_particle_steps"):
+            raise InputError(f"{d}/summary.json: no DEM particle-steps (dem_particle_steps "
+                             "missing or 0: not a DEM run)")
         run = Run(d, case)
         rows.append({"run": d, "particle_steps": float(summary["dem_particle_steps"]),
                      "wall_seconds": float(summary["wall_seconds"]),

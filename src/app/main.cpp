@@ -34,7 +34,8 @@ constexpr const char* kUsage = R"(usage:
                  in DIR too (--output, if given as well, must name the same folder)
 
 Exit codes: 0 done, 1 run failed, 2 bad case or command line, 3 a DEM engine failed,
-  4 stopped by SIGTERM/SIGINT/SIGHUP (after a checkpoint: continue with --resume DIR).
+  4 stopped by SIGTERM/SIGINT/SIGHUP (the log says whether a checkpoint was written:
+  then continue with --resume DIR).
 )";
 
 struct CommandLine {

@@ -173,6 +173,11 @@ def cost_model(work):
     _, two, _ = predict_costs_with_updates(ps[:2], up[:2], t[:2])
     _, rate_only, _ = predict_costs(ps[:2], t[:2])
     expect(two == rate_only, "two variants: the rate model stands in")
+    # Particle-steps proportional to updates cannot separate the two costs: the rate model.
+    same = [p / 100.0 for p in ps]
+    _, proportional, fitted = predict_costs_with_updates(ps, same, exact)
+    _, rate_only, _ = predict_costs(ps, exact)
+    expect(proportional == rate_only and fitted is None, "proportional: the rate model stands in")
     # The rate model alone misses the fixed cost: the 60-update variants with few steps worst.
     _, rate_errors, _ = predict_costs(ps, exact)
     expect(max(abs(e) for e in rate_errors) > 0.1, "the rate model should miss the fixed cost")

@@ -109,16 +109,20 @@ def predict_costs_with_updates(particle_steps, updates, core_seconds):
     """The rate model plus a fixed cost per RVE update (the engine's run set-up, the deformation
     fix, reading the stress and the health measures): core-s = particle-steps / rate +
     updates x t_update, both fitted by least squares to the OTHER variants (leave one out).
-    Where fewer than two others are left, or the fit is not positive, the rate model stands in.
+    Where fewer than two others are left, their particle-steps are proportional to their
+    updates, or the fit is not positive, the rate model stands in.
     Returns (predicted core-s, relative prediction error) per variant, and (rate, t_update)
     fitted to all variants (None when that fit is not positive)."""
     ps, up, t = (np.asarray(a, dtype=float) for a in (particle_steps, updates, core_seconds))
     fallback, _, _ = predict_costs(particle_steps, core_seconds)
 
     def fit(rows):
-        if len(rows) < 2:
+        design = np.vstack([ps[rows], up[rows]]).T
+        # Particle-steps proportional to updates (same sub-steps and grains everywhere) cannot
+        # tell the two costs apart.
+        if len(rows) < 2 or np.linalg.matrix_rank(design) < 2:
             return None
-        (a, b), *_ = np.linalg.lstsq(np.vstack([ps[rows], up[rows]]).T, t[rows], rcond=None)
+        (a, b), *_ = np.linalg.lstsq(design, t[rows], rcond=None)
         return (a, b) if a > 0 and b >= 0 else None
 
     predicted, errors = [], []
