@@ -198,7 +198,7 @@ int Rve::substeps_for(const Mat3& effective_increment) {
     return s.fixed;
   // Inertial number I = γ̇ d sqrt(ρ/p), with γ̇ = |ΔF_eff - I| / (n Δt) (docs/DESIGN.md §8).
   const double strain = (effective_increment - Mat3::Identity()).norm();
-  const double p = std::max(std::abs(last_mean_stress_), 1e3);
+  const double p = std::max(std::abs(last_mean_stress_), s.pressure_floor);
   const double d = 2.0 * spec_.radius.mean();
   const double n =
       strain * d * std::sqrt(spec_.density / p) / (s.inertial_number * spec_.time_step);

@@ -120,6 +120,7 @@ SubstepSpec parse_substeps(const CaseNode& node) {
     node.fail("min", "must be >= 1");
   if (s.max < s.min)
     node.fail("max", "must be >= substeps.min (" + std::to_string(s.min) + ")");
+  s.pressure_floor = node.in_range_or("pressure_floor", 1.0, 1e9, 1e3);
   return s;
 }
 

@@ -45,6 +45,9 @@ struct SubstepSpec {
   double inertial_number = 0.0;  //!< otherwise from I = γ̇ d sqrt(ρ/p)
   int min = 1;
   int max = 0;
+  //! The mean stress the rule counts at least [Pa]: as p → 0 (liquefied, dilated, unloaded
+  //! packings) the quasi-static rule asks for ever more sub-steps (docs/dem_work.md).
+  double pressure_floor = 1e3;
 };
 
 //! Everything needed to build, prepare and drive one RVE (the "rve" node of a case, and

@@ -129,6 +129,26 @@ TEST_F(RveTest, CloneIsBitIdenticalToItsOriginalAfterTheSameDeformation) {
       EXPECT_EQ(sa(i, j), sb(i, j));
 }
 
+// The sub-step rule counts the mean stress as at least substeps.pressure_floor: a floor above
+// the packing's pressure p asks for sqrt(p / floor) of the sub-steps (to the rounding up).
+TEST_F(RveTest, PressureFloorBoundsSubsteps) {
+  nlohmann::json json = test::small_rve_json();
+  json["grains"] = 120;
+  json["substeps"] = {{"inertial_number", 1e-4}, {"min", 1}};
+  const rve::RveSpec plain = test::parse_rve(json);
+  json["substeps"]["pressure_floor"] = 100 * kPressure;
+  const rve::RveSpec floored = test::parse_rve(json);
+  Mat3 dF = Mat3::Identity();
+  dF(0, 1) = 2e-3;
+  auto a = rve::Rve::from_restart(plain, restart_, MPI_COMM_WORLD, "plain");
+  auto b = rve::Rve::from_restart(floored, restart_, MPI_COMM_WORLD, "floored");
+  a->stress();  // the rule reads the last measured mean stress
+  b->stress();
+  const int n_plain = a->deform(dF), n_floored = b->deform(dF);
+  EXPECT_GT(n_plain, 20);
+  EXPECT_NEAR(n_floored, std::ceil(n_plain / 10.0), 1.0) << n_plain << " vs " << n_floored;
+}
+
 TEST_F(RveTest, StressEqualsContactSumAfterDeformation) {
   auto r = clone();
   Mat3 dF = Mat3::Identity();
