@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include "core/analysis.h"
+#include "core/build_id.h"
 #include "core/case_error.h"
 #include "core/case_node.h"
 #include "core/mpi_session.h"
@@ -27,6 +28,7 @@ constexpr const char* kUsage = R"(usage:
   mpm_lig CASE.json [--output DIR] [--resume DIR]   run a case
   mpm_lig --validate CASE.json                      check the whole case; exit 0 (valid) or 2
   mpm_lig --help                                    this text
+  mpm_lig --version                                 this build's identity
 
   Runs under MPI: mpirun -np N mpm_lig CASE.json
   --output DIR   where results go (default: ./<case name>_out)
@@ -44,6 +46,7 @@ struct CommandLine {
   std::optional<std::string> resume_dir;
   bool validate_only = false;
   bool help = false;
+  bool version = false;
 };
 
 //! Parse argv; a std::nullopt means bad usage (already reported).
@@ -61,6 +64,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, bool report
     };
     if (arg == "--help" || arg == "-h") {
       cl.help = true;
+    } else if (arg == "--version") {
+      cl.version = true;
     } else if (arg == "--validate") {
       cl.validate_only = true;
     } else if (arg == "--output" || arg == "-o") {
@@ -81,7 +86,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, bool report
       return fail("more than one case file given ('" + cl.case_file + "', '" + arg + "')");
     }
   }
-  if (!cl.help && cl.case_file.empty())
+  if (!cl.help && !cl.version && cl.case_file.empty())
     return fail("no case file given");
   return cl;
 }
@@ -162,6 +167,11 @@ int main(int argc, char** argv) {
   if (cl->help) {
     if (root_rank)
       std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (cl->version) {
+    if (root_rank)
+      std::printf("mpm_lig %s\n", mpm_lig::build_id());
     return 0;
   }
 

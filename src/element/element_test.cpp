@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/build_id.h"
 #include "core/resources.h"
 #include "dem/file_name.h"
 #include "element/strain_path.h"
@@ -294,6 +295,7 @@ RunEnd ElementTest::run(const RunContext& context) {
   MPI_Comm_size(context.comm, &ranks);
   // As the MPM summary: cost tools count stepping time (wall minus preparation) per core.
   summary["ranks"] = ranks;
+  summary["build"] = build_id();
   summary["time_split"] = {{"preparation", preparation_seconds}};
   if (writer)
     io::write_json((dir / "summary.json").string(), summary);

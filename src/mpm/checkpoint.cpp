@@ -4,6 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/build_id.h"
 #include "core/mpi_session.h"
 #include "io/checkpoint_file.h"
 #include "io/file_digest.h"
@@ -119,6 +120,11 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
   out.close();
   if (!out)
     throw std::runtime_error("cannot write '" + dir + "/" + CheckpointFolder::kCase + "'");
+  std::ofstream build(dir + "/" + CheckpointFolder::kBuild);
+  build << build_id() << '\n';
+  build.close();
+  if (!build)
+    throw std::runtime_error("cannot write '" + dir + "/" + CheckpointFolder::kBuild + "'");
 }
 
 //! Rank 0, once every rank has written its files: checksums, then `latest` (atomically), then

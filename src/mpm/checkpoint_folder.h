@@ -16,6 +16,8 @@ struct CheckpointFolder {
   static constexpr const char* kManifest = "MANIFEST.sha256";
   static constexpr const char* kCase = "case.json";
   static constexpr const char* kState = "mpm.h5";
+  //! The identity of the build that wrote the checkpoint (core/build_id.h), one line.
+  static constexpr const char* kBuild = "build";
   //! Layout of a checkpoint, kept in mpm.h5 ("format"; absent = 1). 2: a DEM point keeps its
   //! grains' exact placement beside its engine restart (point_<i>.restart.placement).
   static constexpr int kFormat = 2;

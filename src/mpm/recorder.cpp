@@ -7,6 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/build_id.h"
 #include "io/summary.h"
 
 namespace mpm_lig::mpm {
@@ -260,6 +261,7 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
   nlohmann::json s;
   s["wall_seconds"] = totals.wall_seconds;
   s["ranks"] = totals.ranks;
+  s["build"] = build_id();
   s["rve_count"] = cost.simulations;
   s["dem_particle_steps"] = cost.particle_steps;
   // Rank 0's time: the exchange includes waiting for the slowest rank (load imbalance).

@@ -1,10 +1,13 @@
 #include "mpm/resume_check.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <vector>
 
+#include "core/build_id.h"
 #include "core/case_error.h"
+#include "core/printable.h"
 #include "io/checkpoint_file.h"
 #include "io/field_index.h"
 #include "io/file_digest.h"
@@ -95,6 +98,20 @@ void check_results(const MpmCase& c, const std::string& run_dir, const std::stri
   }
 }
 
+//! Another build continues the run: allowed (a fix may be why the user resumes), but its
+//! arithmetic may differ from the build that wrote the checkpoint, so the run says so.
+void warn_if_other_build(const std::string& folder) {
+  std::ifstream in(folder + "/" + CheckpointFolder::kBuild);
+  std::string written;
+  std::getline(in, written);
+  if (written != build_id())
+    std::fprintf(stderr,
+                 "mpm_lig: warning: checkpoint '%s' was written by build %s, this is build %s: "
+                 "the steps after it may differ from a run made by either build alone\n",
+                 printable(folder, 300).c_str(),
+                 written.empty() ? "(not recorded)" : printable(written, 80).c_str(), build_id());
+}
+
 std::string resume_problem(const MpmCase& c, const std::string& run_dir) {
   try {
     const std::string folder = CheckpointFolder::latest(run_dir);
@@ -122,6 +139,8 @@ void check_resume(const MpmCase& c, const std::string& run_dir, MPI_Comm comm) {
   MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm);
   if (!problem.empty())
     throw ResumeError(problem);
+  if (rank == 0)
+    warn_if_other_build(CheckpointFolder::latest(run_dir));
 }
 
 }  // namespace mpm_lig::mpm

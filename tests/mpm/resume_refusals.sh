@@ -108,6 +108,11 @@ PY
 digest "$work/run" > "$work/before"
 resume_refused "has layout 1 \(an older mpm_lig wrote it\); this build reads layout 2"
 
+scenario="checkpoint of another build (checksums made to match): resumed with a warning"
+fresh; echo "other-build" > "$work/run/checkpoints/step_16/build"
+(cd "$work/run/checkpoints/step_16" && find . -type f ! -name MANIFEST.sha256 -printf '%P\n' | sort | xargs sha256sum > MANIFEST.sha256)
+expect 0 "checkpoint .* was written by build other-build, this is build " "$work/case.json" --resume "$work/run"
+
 scenario="--resume of a missing folder"
 expect 2 "--resume $work/no_such_dir: no such folder" "$work/case.json" --resume "$work/no_such_dir"
 [ ! -e "$work/no_such_dir" ] || fail "the folder was created"
