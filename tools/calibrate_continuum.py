@@ -29,7 +29,7 @@ import numpy as np
 
 from mpm_lig_post import cli
 from mpm_lig_post.errors import InputError
-from mpm_lig_post.quantities import Run, max_dilatancy, principal_series
+from mpm_lig_post.quantities import Run, max_dilatancy, peak_ratio_row, principal_series
 from mpm_lig_post.tables import read_json
 
 
@@ -47,9 +47,10 @@ def read_run(directory):
 
 
 def peak_point(s1, s3):
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = np.where(s1 + s3 > 0, (s1 - s3) / (s1 + s3), -np.inf)
-    k = int(np.argmax(ratio))
+    """(s, t) = ((s1 + s3) / 2, (s1 - s3) / 2) at the peak stress ratio."""
+    k = peak_ratio_row(s1, s3)
+    if k is None:
+        raise InputError("no loaded state in the run")
     return 0.5 * (s1[k] + s3[k]), 0.5 * (s1[k] - s3[k])
 
 

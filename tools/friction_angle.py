@@ -18,19 +18,10 @@ import numpy as np
 
 from mpm_lig_post import cli
 from mpm_lig_post.errors import InputError
+from mpm_lig_post.quantities import peak_ratio_row, principal_stresses
 from mpm_lig_post.tables import read_history, read_json, require_columns
 
 STRESS_COLUMNS = ("s_xx", "s_yy", "s_zz", "s_xy", "s_xz", "s_yz")
-
-
-def principal(row, dimension):
-    s = np.array([[row["s_xx"], row["s_xy"], row["s_xz"]],
-                  [row["s_xy"], row["s_yy"], row["s_yz"]],
-                  [row["s_xz"], row["s_yz"], row["s_zz"]]])
-    if dimension == 2:
-        s = s[:2, :2]
-    eig = np.linalg.eigvalsh(-s)  # compression positive, ascending
-    return eig[-1], eig[0]
 
 
 def peak_state(run_dir):
@@ -40,17 +31,11 @@ def peak_state(run_dir):
     history_path = f"{run_dir}/history.csv"
     table = read_history(history_path)
     require_columns(table, STRESS_COLUMNS, history_path)
-    best = None
-    for k in range(len(table["s_xx"])):
-        row = {name: table[name][k] for name in STRESS_COLUMNS}
-        s1, s3 = principal(row, summary["dimension"])
-        if s1 + s3 <= 0:
-            continue
-        ratio = (s1 - s3) / (s1 + s3)
-        if best is None or ratio > best[0]:
-            best = (ratio, s1, s3)
-    if best is None:
+    s1, s3 = principal_stresses(table, summary["dimension"])
+    k = peak_ratio_row(s1, s3)
+    if k is None:
         raise InputError(f"{history_path}: no loaded state")
+    best = ((s1[k] - s3[k]) / (s1[k] + s3[k]), s1[k], s3[k])
     return summary, best
 
 

@@ -48,8 +48,9 @@ class Run:
 
 # ---- element tests -------------------------------------------------------------------------
 
-def principal_series(h, dimension):
-    """(s1, s3, e1, e_v): compression-positive principal stresses, axial and volumetric strain."""
+def principal_stresses(h, dimension):
+    """(s1, s3) of every row: the largest and smallest compression-positive principal stresses
+    (in-plane in 2D)."""
     names = ["xx", "yy", "zz", "xy", "xz", "yz"]
     missing = [f"s_{n}" for n in names if f"s_{n}" not in h]
     if missing:
@@ -60,9 +61,24 @@ def principal_series(h, dimension):
     if dimension == 2:
         s = s[:, :2, :2]
     eig = np.linalg.eigvalsh(s)
+    return eig[:, -1], eig[:, 0]
+
+
+def peak_ratio_row(s1, s3):
+    """The row of largest stress ratio (s1 - s3) / (s1 + s3) among loaded rows (s1 + s3 > 0),
+    or None when no row is loaded."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where(s1 + s3 > 0, (s1 - s3) / (s1 + s3), -np.inf)
+    k = int(np.argmax(ratio))
+    return k if np.isfinite(ratio[k]) else None
+
+
+def principal_series(h, dimension):
+    """(s1, s3, e1, e_v): compression-positive principal stresses, axial and volumetric strain."""
+    s1, s3 = principal_stresses(h, dimension)
     axial = int(np.argmin([h["e_xx"][-1], h["e_yy"][-1], h["e_zz"][-1]]))
     e1 = -h[["e_xx", "e_yy", "e_zz"][axial]]
-    return eig[:, -1], eig[:, 0], e1, -h["e_vol"]
+    return s1, s3, e1, -h["e_vol"]
 
 
 def _dimension(run):
