@@ -71,6 +71,8 @@ DemRveMaterial::DemRveMaterial(const CaseNode& node) : path_(node.path()) {
   ranks_per_rve_ = node.get_or<int>("ranks_per_rve", 1);
   if (ranks_per_rve_ < 1)
     node.fail("ranks_per_rve", "must be >= 1");
+  if (node.has("quiet"))
+    quiet_spec_ = parse_quiet(node.child("quiet"));
 }
 
 DemRveMaterial::~DemRveMaterial() = default;
@@ -224,6 +226,9 @@ void DemRveMaterial::start_work_ledger() {
     p = mean_pressure(packings_.front().stress, spec_.dimension);
   work_.start(points_, static_cast<double>(spec_.grains),
               spec_.substeps.fixed > 0 ? 0 : spec_.substeps.max, p);
+  quiet_.start(points_, quiet_spec_, spec_.dimension, spec_.substeps.pressure_floor);
+  for (std::size_t point = 0; point < points_; ++point)
+    quiet_.set_packing(point, initial_stress(point), packings_[packing_of(point)].wave_modulus);
 }
 
 void DemRveMaterial::inject_fault_if_asked(std::size_t point, rve::Rve& rve) const {
@@ -259,6 +264,33 @@ void DemRveMaterial::deform_owned(const std::vector<long>& batch_index, const st
   }
 }
 
+std::vector<Mat3> DemRveMaterial::dem_increments(const std::vector<std::size_t>& points,
+                                                const std::vector<Mat3>& dF,
+                                                std::vector<long>& batch_index) {
+  if (!quiet_.enabled())
+    return dF;
+  std::vector<Mat3> increments(dF.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (quiet_.accumulate(points[i], dF[i]))
+      increments[i] = quiet_.pending(points[i]);
+    else
+      batch_index[points[i]] = -1;
+  }
+  return increments;
+}
+
+void DemRveMaterial::settle_quiet_points(const std::vector<std::size_t>& points,
+                                         const std::vector<long>& batch_index) {
+  if (!quiet_.enabled())
+    return;
+  for (const std::size_t p : points) {
+    if (batch_index[p] >= 0)
+      quiet_.after_dem(p, stress_[p]);
+    else
+      stress_[p] = quiet_.predicted(p);
+  }
+}
+
 void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::vector<Mat3>& dF,
                             double /*dt*/, std::vector<Mat3>& stress) {
   if (!layout_)
@@ -267,18 +299,20 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
   std::vector<long> batch_index(points_, -1);
   for (std::size_t i = 0; i < points.size(); ++i)
     batch_index[points[i]] = static_cast<long>(i);
+  const std::vector<Mat3> increments = dem_increments(points, dF, batch_index);
 
   const double start = MPI_Wtime();
   std::vector<Mat3> owned_stress;
   std::vector<double> owned_steps;
-  deform_owned(batch_index, dF, owned_stress, owned_steps);
+  deform_owned(batch_index, increments, owned_stress, owned_steps);
   const double computed = MPI_Wtime();
   const std::vector<Mat3> before = stress_;
   stress_ = layout_->gather(owned_stress);
   substeps_ = layout_->gather(owned_steps, 1);
+  settle_quiet_points(points, batch_index);
   for (std::size_t i = 0; i < points.size(); ++i)
     work_.add(points[i], substeps_[points[i]], mean_pressure(before[points[i]], spec_.dimension),
-              dF[i]);
+              increments[i]);
   cost_.compute_seconds += computed - start;
   cost_.communication_seconds += MPI_Wtime() - computed;
   // Every rank knows every RVE's step count: the total needs no reduction.
@@ -289,6 +323,11 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
 }
 
 namespace {
+
+//! The run statistics of the quiet points in a checkpoint (QuietPoints::save_stats order).
+const char* const kQuietStatNames[QuietPoints::kStatValues] = {
+    "quiet_predictions", "quiet_dem_updates", "quiet_checks",
+    "quiet_error_sum",   "quiet_max_error",   "quiet_exceeded"};
 
 std::string checkpoint_file(const std::string& dir, std::size_t point) {
   return dir + "/point_" + std::to_string(point) + ".restart";
@@ -309,11 +348,16 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
                [&] { rve.write_checkpoint(checkpoint_file(out.folder(), p)); });
     PointCheckpoint saved{stress_[p], substeps_[p], rve.state()};
     std::copy(work_.row(p), work_.row(p) + DemWork::kValues, saved.work);
+    quiet_.save_row(p, saved.quiet);
     pack(saved, owned);
   }
   write_points(out, layout_->gather(owned, static_cast<int>(point_checkpoint_width())));
   out.set("updates", static_cast<double>(updates_));
   out.set("particle_steps", cost_.particle_steps);
+  double stats[QuietPoints::kStatValues];
+  quiet_.save_stats(stats);
+  for (int k = 0; k < QuietPoints::kStatValues; ++k)
+    out.set(kQuietStatNames[k], stats[k]);
 }
 
 void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
@@ -333,6 +377,7 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     stress_[p] = saved.stress;
     substeps_[p] = saved.substeps;
     work_.restore_row(p, saved.work);
+    quiet_.restore_row(p, saved.quiet);
     if (!layout_->owns(p))
       continue;
     rves_.push_back(or_end_job(in.describe() + ": " + point_label(p) + " not restored", [&] {
@@ -342,6 +387,10 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     rves_.back()->restore(saved.rve);
   }
   updates_ = static_cast<long>(in.get("updates"));
+  double stats[QuietPoints::kStatValues];
+  for (int k = 0; k < QuietPoints::kStatValues; ++k)
+    stats[k] = in.get(kQuietStatNames[k]);
+  quiet_.restore_stats(stats);
   cost_.simulations = points_;
   cost_.particle_steps = in.get("particle_steps");
   cost_.preparation_seconds += MPI_Wtime() - start;
@@ -372,6 +421,10 @@ materials::MaterialCost DemRveMaterial::cost() const {
   c.particle_steps_at_max = work_.sum(1);
   c.particle_steps_low_stress = work_.sum(2);
   c.particle_steps_quiet = work_.sum(3);
+  if (quiet_.enabled()) {
+    const QuietStats& q = quiet_.stats();
+    c.quiet = {true, q.predictions, q.dem_updates, q.checks, q.error_sum, q.max_error, q.exceeded};
+  }
   return c;
 }
 

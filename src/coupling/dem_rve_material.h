@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "coupling/dem_work.h"
+#include "coupling/quiet_points.h"
 #include "coupling/rve_layout.h"
 #include "materials/material.h"
 #include "rve/rve.h"
@@ -22,7 +23,8 @@ struct Packing {
 
 //! The material law of a point is its own DEM packing (the "dem_rve" material).
 //!
-//! Case node: {"type": "dem_rve", "rve": {RVE spec}, "packings": K, "ranks_per_rve": g}.
+//! Case node: {"type": "dem_rve", "rve": {RVE spec}, "packings": K, "ranks_per_rve": g,
+//! "quiet": {QuietSpec}}.
 //! `prepare()` consolidates K packings (seeds rve.seed + k) or takes `rve.restart_file`;
 //! point i is cloned from packing i mod K. The MPM is replicated on every rank, so every
 //! rank calls update() with the same batch; each rank group deforms the RVEs it owns and
@@ -81,6 +83,13 @@ class DemRveMaterial final : public materials::Material {
  private:
   void create_rves();
   void start_work_ledger();
+  //! The increments the RVEs run this update: dF itself, or with quiet points the increments
+  //! accumulated by the points that must run DEM now (the others get batch_index -1).
+  std::vector<Mat3> dem_increments(const std::vector<std::size_t>& points,
+                                   const std::vector<Mat3>& dF, std::vector<long>& batch_index);
+  //! After the stresses are gathered: checks and predicted stresses of the quiet points.
+  void settle_quiet_points(const std::vector<std::size_t>& points,
+                           const std::vector<long>& batch_index);
   void deform_owned(const std::vector<long>& batch_index, const std::vector<Mat3>& dF,
                     std::vector<Mat3>& owned_stress, std::vector<double>& owned_steps);
   void inject_fault_if_asked(std::size_t point, rve::Rve& rve) const;
@@ -101,6 +110,8 @@ class DemRveMaterial final : public materials::Material {
   std::vector<Mat3> stress_;                     //!< every point's last stress (all ranks)
   std::vector<double> substeps_;                 //!< every point's last DEM step count
   DemWork work_;                                 //!< every point's DEM work (all ranks)
+  QuietSpec quiet_spec_;
+  QuietPoints quiet_;  //!< every point's quiet state (all ranks)
   long updates_ = 0;
   int rank_ = 0;
   materials::MaterialCost cost_;

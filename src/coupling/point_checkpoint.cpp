@@ -23,6 +23,7 @@ const Field kFields[] = {
     {"rve_particle_steps", 1, [](PointCheckpoint& p) { return &p.rve.particle_steps; }},
     {"last_mean_stress", 1, [](PointCheckpoint& p) { return &p.rve.last_mean_stress; }},
     {"dem_work", DemWork::kValues, [](PointCheckpoint& p) { return p.work; }},
+    {"quiet_points", QuietPoints::kValues, [](PointCheckpoint& p) { return p.quiet; }},
 };
 
 constexpr const char* kFieldCount = "point_fields";

@@ -5,6 +5,7 @@
 
 #include "core/tensor.h"
 #include "coupling/dem_work.h"
+#include "coupling/quiet_points.h"
 #include "materials/checkpoint_io.h"
 #include "rve/rve.h"
 
@@ -20,6 +21,7 @@ struct PointCheckpoint {
   double substeps = 0.0;               //!< DEM steps of its last update
   rve::Rve::State rve;                 //!< rotation, streaming gradient, counters
   double work[DemWork::kValues] = {};  //!< the point's DEM work (DemWork row)
+  double quiet[QuietPoints::kValues] = {};  //!< its quiet-point state (QuietPoints row)
 };
 
 //! Doubles per point when packed (the sum of the field widths).

@@ -25,6 +25,18 @@ struct MaterialContext {
 
 //! Cost counters of a material whose points run simulations of their own (DEM RVEs). The
 //! same on every rank except the times, which are this rank's.
+//! Stresses predicted instead of computed (a DEM material's quiet points), and the checks of
+//! those predictions against real updates.
+struct PredictionCost {
+  bool enabled = false;
+  double predictions = 0.0;  //!< point-updates predicted
+  double updates = 0.0;      //!< point-updates computed
+  double checks = 0.0;       //!< computed updates that checked a prediction
+  double error_sum = 0.0;    //!< of the checked relative errors
+  double max_error = 0.0;
+  double exceeded = 0.0;  //!< checks above the material's error bound
+};
+
 struct MaterialCost {
   std::size_t simulations = 0;         //!< RVEs (all ranks)
   double particle_steps = 0.0;         //!< DEM grain-steps so far, each RVE counted once
@@ -34,6 +46,7 @@ struct MaterialCost {
   double particle_steps_at_max = 0.0;  //!< of particle_steps: updates at substeps.max
   double particle_steps_low_stress = 0.0;  //!< in packings below 10 % of the preparation p
   double particle_steps_quiet = 0.0;       //!< in updates with |dF - 1| < 1e-5
+  PredictionCost quiet;
 };
 
 //! The constitutive side of a material point, seen by the MPM solver.

@@ -105,6 +105,15 @@ materials::MaterialCost total_cost(const MaterialSet& materials) {
     total.particle_steps_at_max += c.particle_steps_at_max;
     total.particle_steps_low_stress += c.particle_steps_low_stress;
     total.particle_steps_quiet += c.particle_steps_quiet;
+    if (c.quiet.enabled) {
+      total.quiet.enabled = true;
+      total.quiet.predictions += c.quiet.predictions;
+      total.quiet.updates += c.quiet.updates;
+      total.quiet.checks += c.quiet.checks;
+      total.quiet.error_sum += c.quiet.error_sum;
+      total.quiet.max_error = std::max(total.quiet.max_error, c.quiet.max_error);
+      total.quiet.exceeded += c.quiet.exceeded;
+    }
   }
   return total;
 }
@@ -289,6 +298,19 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
         {"mean_stress_below_10_percent_of_preparation",
          cost.particle_steps_low_stress / cost.particle_steps},
         {"strain_per_step_below_1e-5", cost.particle_steps_quiet / cost.particle_steps}};
+  if (cost.quiet.enabled) {
+    const materials::PredictionCost& q = cost.quiet;
+    s["quiet_points"] = {
+        {"predicted_updates", q.predictions},
+        {"dem_updates", q.updates},
+        {"predicted_share", q.predictions + q.updates > 0.0
+                                ? q.predictions / (q.predictions + q.updates)
+                                : 0.0},
+        {"checks", q.checks},
+        {"mean_error", q.checks > 0.0 ? q.error_sum / q.checks : 0.0},
+        {"max_error", q.max_error},
+        {"checks_above_max_error", q.exceeded}};
+  }
   s["mpm_steps"] = solver.steps();
   s["gravity_stage_steps"] = totals.gravity_stage_steps;
   s["material_points"] = solver.particles().size();

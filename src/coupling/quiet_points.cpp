@@ -1,0 +1,185 @@
+#include "coupling/quiet_points.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mpm_lig::coupling {
+namespace {
+
+//! A tolerance is never tightened below this fraction of the case's.
+constexpr double kTightestFraction = 1.0 / 1024.0;
+//! An increment below this fraction of the tolerance is too small to measure moduli on (the
+//! packing's stress fluctuations would dominate its secant).
+constexpr double kMeasurableStrain = 0.1;
+//! A volumetric or deviatoric part smaller than this fraction of the increment measures nothing.
+constexpr double kMeasurablePart = 0.1;
+
+Mat3 spin_of(const Mat3& stress, const Mat3& increment) {
+  const Mat3 inc = increment - Mat3::Identity();
+  const Mat3 omega = 0.5 * (inc - inc.transpose());
+  return omega * stress - stress * omega;
+}
+
+//! Trace over the first `d` axes (the plane of a 2D packing, all three in 3D).
+double trace_d(const Mat3& a, int d) {
+  double t = 0.0;
+  for (int i = 0; i < d; ++i)
+    t += a(i, i);
+  return t;
+}
+
+Mat3 in_plane(const Mat3& a, int d) {
+  Mat3 b = Mat3::Zero();
+  b.topLeftCorner(d, d) = a.topLeftCorner(d, d);
+  return b;
+}
+
+Mat3 identity_d(int d) {
+  Mat3 b = Mat3::Zero();
+  for (int i = 0; i < d; ++i)
+    b(i, i) = 1.0;
+  return b;
+}
+
+}  // namespace
+
+QuietSpec parse_quiet(const CaseNode& node) {
+  QuietSpec s;
+  s.enabled = node.get_or<bool>("enabled", true);
+  s.tolerance = node.in_range_or("tolerance", 1e-8, 0.1, s.tolerance);
+  s.max_error = node.in_range_or("max_error", 1e-6, 1.0, s.max_error);
+  s.check_every = node.get_or<int>("check_every", s.check_every);
+  if (s.check_every < 1 || s.check_every > 1'000'000)
+    node.fail("check_every", "must be between 1 and 1000000");
+  return s;
+}
+
+void QuietPoints::start(std::size_t points, const QuietSpec& spec, int dimension,
+                        double stress_floor) {
+  spec_ = spec;
+  dimension_ = dimension;
+  stress_floor_ = stress_floor;
+  pending_.assign(points, Mat3::Identity());
+  anchor_.assign(points, Mat3::Zero());
+  predicted_.assign(points, Mat3::Zero());
+  rows_.assign(points, Row{});
+  for (Row& r : rows_)
+    r.tolerance = spec.tolerance;
+  stats_ = QuietStats{};
+}
+
+void QuietPoints::set_packing(std::size_t point, const Mat3& stress, double wave_modulus) {
+  anchor_[point] = stress;
+  predicted_[point] = stress;
+  Row& r = row(point);
+  r.wave_modulus = wave_modulus;
+  // M = K + G in plane strain (K the areal bulk modulus), M = K + 4G/3 in 3D.
+  r.shear = dimension_ == 2 ? 0.5 * wave_modulus : 3.0 * wave_modulus / 7.0;
+  r.bulk = r.shear;
+}
+
+Mat3 QuietPoints::predict(const Mat3& anchor, const Mat3& increment, double bulk,
+                          double shear) const {
+  const int d = dimension_;
+  const Mat3 inc = increment - Mat3::Identity();
+  const Mat3 strain = in_plane(0.5 * (inc + inc.transpose()), d);
+  const double volumetric = trace_d(strain, d);
+  const Mat3 deviatoric = strain - (volumetric / d) * identity_d(d);
+  return anchor + bulk * volumetric * identity_d(d) + 2.0 * shear * deviatoric +
+         spin_of(anchor, increment);
+}
+
+bool QuietPoints::accumulate(std::size_t point, const Mat3& dF) {
+  pending_[point] = dF * pending_[point];
+  Row& r = row(point);
+  predicted_[point] = predict(anchor_[point], pending_[point], r.bulk, r.shear);
+  const double strain = (pending_[point] - Mat3::Identity()).norm();
+  if (strain >= r.tolerance || r.quiet_updates >= spec_.check_every)
+    return true;
+  r.quiet_updates += 1.0;
+  stats_.predictions += 1.0;
+  return false;
+}
+
+void QuietPoints::after_dem(std::size_t point, const Mat3& stress) {
+  Row& r = row(point);
+  if (r.quiet_updates > 0.0) {
+    // The prediction for this increment, against the DEM's answer: an upper bound of the
+    // error of the quiet updates before it, whose increments were smaller.
+    const double scale = std::max(stress.norm(), stress_floor_);
+    const double error = (predicted_[point] - stress).norm() / scale;
+    stats_.checks += 1.0;
+    stats_.error_sum += error;
+    stats_.max_error = std::max(stats_.max_error, error);
+    if (error > spec_.max_error) {
+      stats_.exceeded += 1.0;
+      r.tolerance = std::max(0.5 * r.tolerance, kTightestFraction * spec_.tolerance);
+    } else if (error < 0.25 * spec_.max_error) {
+      r.tolerance = std::min(2.0 * r.tolerance, spec_.tolerance);
+    }
+  }
+  stats_.dem_updates += 1.0;
+  measure_moduli(point, stress);
+  anchor_[point] = stress;
+  predicted_[point] = stress;
+  pending_[point] = Mat3::Identity();
+  r.quiet_updates = 0.0;
+}
+
+void QuietPoints::measure_moduli(std::size_t point, const Mat3& stress) {
+  const int d = dimension_;
+  const Mat3& increment = pending_[point];
+  const Mat3 inc = increment - Mat3::Identity();
+  const Mat3 strain = in_plane(0.5 * (inc + inc.transpose()), d);
+  const double size = strain.norm();
+  if (!(size >= kMeasurableStrain * spec_.tolerance))
+    return;
+  const Mat3 change = in_plane(stress - anchor_[point] - spin_of(anchor_[point], increment), d);
+  const double volumetric = trace_d(strain, d);
+  const Mat3 deviatoric = strain - (volumetric / d) * identity_d(d);
+  Row& r = row(point);
+  double bulk = 0.0, shear = 0.0;
+  if (std::abs(volumetric) >= kMeasurablePart * size)
+    bulk = (trace_d(change, d) / d) / volumetric;
+  if (deviatoric.norm() >= kMeasurablePart * size)
+    shear = (change.cwiseProduct(deviatoric)).sum() / (2.0 * deviatoric.squaredNorm());
+  // A secant that is not a stiffness (softening, dilatancy under shear, the noise of a small
+  // increment) keeps the last one measured; the checks catch what that misses.
+  if (std::isfinite(bulk) && bulk > 0.0 && bulk <= r.wave_modulus)
+    r.bulk = bulk;
+  if (std::isfinite(shear) && shear > 0.0 && shear <= r.wave_modulus)
+    r.shear = shear;
+}
+
+void QuietPoints::save_row(std::size_t point, double* v) const {
+  std::copy(pending_[point].data(), pending_[point].data() + 9, v);
+  std::copy(anchor_[point].data(), anchor_[point].data() + 9, v + 9);
+  std::copy(predicted_[point].data(), predicted_[point].data() + 9, v + 18);
+  const Row& r = row(point);
+  const double rest[] = {r.bulk, r.shear, r.tolerance, r.quiet_updates, r.wave_modulus};
+  std::copy(rest, rest + 5, v + 27);
+}
+
+void QuietPoints::restore_row(std::size_t point, const double* v) {
+  std::copy(v, v + 9, pending_[point].data());
+  std::copy(v + 9, v + 18, anchor_[point].data());
+  std::copy(v + 18, v + 27, predicted_[point].data());
+  Row& r = row(point);
+  r.bulk = v[27];
+  r.shear = v[28];
+  r.tolerance = v[29];
+  r.quiet_updates = v[30];
+  r.wave_modulus = v[31];
+}
+
+void QuietPoints::save_stats(double* v) const {
+  const double values[] = {stats_.predictions, stats_.dem_updates, stats_.checks,
+                           stats_.error_sum,   stats_.max_error,   stats_.exceeded};
+  std::copy(values, values + kStatValues, v);
+}
+
+void QuietPoints::restore_stats(const double* v) {
+  stats_ = QuietStats{v[0], v[1], v[2], v[3], v[4], v[5]};
+}
+
+}  // namespace mpm_lig::coupling

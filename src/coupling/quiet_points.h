@@ -1,0 +1,100 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/case_node.h"
+#include "core/tensor.h"
+
+namespace mpm_lig::coupling {
+
+//! Case node "quiet" of a dem_rve material (absent: off, every point runs DEM every step).
+struct QuietSpec {
+  bool enabled = false;
+  double tolerance = 1e-4;  //!< |F_pending - 1| below which a point's stress is predicted
+  double max_error = 0.02;  //!< prediction error (relative to |σ|) that tightens a tolerance
+  int check_every = 50;     //!< a point quiet this many updates in a row runs DEM (a check)
+};
+
+QuietSpec parse_quiet(const CaseNode& node);
+
+//! What the checks of the predictions measured over the run.
+struct QuietStats {
+  double predictions = 0.0;  //!< point-updates whose stress was predicted (no DEM)
+  double dem_updates = 0.0;  //!< point-updates that ran DEM
+  double checks = 0.0;       //!< DEM updates that followed a prediction, i.e. checked one
+  double error_sum = 0.0;    //!< sum of the checked predictions' relative errors
+  double max_error = 0.0;    //!< largest checked relative error
+  double exceeded = 0.0;     //!< checks above max_error (each tightened that point's tolerance)
+};
+
+//! Quiet points: a point whose deformation since its last DEM update is below a tolerance gets
+//! its stress predicted from its own packing's response, measured on its own DEM updates (an
+//! isotropic secant: bulk and shear moduli of the last update's volumetric and deviatoric
+//! parts), plus the rotation of the stress it had; the DEM catches up with the accumulated
+//! increment once the tolerance is passed, or after `check_every` quiet updates. Every DEM
+//! update that follows a prediction compares the two; an error above `max_error` halves the
+//! point's tolerance, an error below a quarter of it doubles it back towards the case's.
+//!
+//! All state is replicated on every rank and updated from replicated data only (the MPM
+//! increments and the gathered stresses): every rank takes the same decisions, whatever the
+//! rank count. docs/DESIGN.md §8.
+class QuietPoints {
+ public:
+  //! Per-point values in a checkpoint row: pending (9), anchor stress (9), predicted (9),
+  //! bulk, shear, tolerance, quiet updates in a row, wave modulus.
+  static constexpr int kValues = 32;
+
+  //! `points` points of a `dimension`-D packing; `stress_floor` [Pa] keeps relative errors of
+  //! points near zero stress finite.
+  void start(std::size_t points, const QuietSpec& spec, int dimension, double stress_floor);
+  bool enabled() const { return spec_.enabled; }
+  //! `point` before any update: its packing's stress and constrained (P-wave) modulus M. The
+  //! moduli start at the isotropic pair with that M and equal bulk and shear moduli; a
+  //! secant measured later is bounded by M (a larger one is the noise of a small increment).
+  void set_packing(std::size_t point, const Mat3& stress, double wave_modulus);
+
+  //! Books the MPM increment `dF` of `point`; true when it must run DEM now (with
+  //! pending(point) as its increment), false when its stress is predicted (predicted(point)).
+  bool accumulate(std::size_t point, const Mat3& dF);
+  const Mat3& pending(std::size_t point) const { return pending_[point]; }
+  //! The predicted stress of a quiet point (valid after accumulate() returned false).
+  const Mat3& predicted(std::size_t point) const { return predicted_[point]; }
+  //! After a DEM update of `point` under pending(point) that gave `stress`: check the
+  //! prediction, measure the secant moduli, start a new quiet interval.
+  void after_dem(std::size_t point, const Mat3& stress);
+  //! The stress the moduli predict under `increment` from `anchor` (testable alone).
+  Mat3 predict(const Mat3& anchor, const Mat3& increment, double bulk, double shear) const;
+
+  double tolerance(std::size_t point) const { return row(point).tolerance; }
+  const QuietStats& stats() const { return stats_; }
+
+  //! Checkpoint: `values` gets kValues per point; the run statistics separately.
+  void save_row(std::size_t point, double* values) const;
+  void restore_row(std::size_t point, const double* values);
+  static constexpr int kStatValues = 6;
+  void save_stats(double* values) const;
+  void restore_stats(const double* values);
+
+ private:
+  struct Row {
+    double bulk = 0.0, shear = 0.0;  //!< secant moduli measured on this point's RVE
+    double tolerance = 0.0;
+    double quiet_updates = 0.0;  //!< predicted updates since the last DEM update
+    double wave_modulus = 0.0;   //!< the packing's M: the largest modulus accepted
+  };
+  Row& row(std::size_t point) { return rows_[point]; }
+  const Row& row(std::size_t point) const { return rows_[point]; }
+  void measure_moduli(std::size_t point, const Mat3& stress);
+
+  QuietSpec spec_;
+  int dimension_ = 2;
+  double stress_floor_ = 1.0;
+  std::vector<Mat3> pending_;    //!< increment since the last DEM update
+  std::vector<Mat3> anchor_;     //!< stress at the last DEM update
+  std::vector<Mat3> predicted_;  //!< last predicted stress
+  std::vector<Row> rows_;
+  QuietStats stats_;
+};
+
+}  // namespace mpm_lig::coupling
