@@ -53,6 +53,24 @@ def _read_number(path):
         return None
 
 
+def _settings_groups(done, axis):
+    """The finished variants grouped by their settings (the seeds of one setting together):
+    name (members' names joined by '+'), label (without the seed), members, mean cost."""
+    groups = {}
+    for r in done:
+        groups.setdefault(json.dumps(r["settings"], sort_keys=True), []).append(r)
+    out = []
+    for rows in groups.values():
+        label = rows[0]["label"]
+        if rows[0]["seed"] is not None:
+            label = label.replace(f", seed={rows[0]['seed']}", "").replace(
+                f"seed={rows[0]['seed']}", "")
+        out.append({"name": "+".join(r["name"] for r in rows), "label": label,
+                    "members": [r["name"] for r in rows], "reference": rows[0]["reference"],
+                    axis: sum(r[axis] for r in rows) / len(rows), "errors": {}, "rows": rows})
+    return out
+
+
 def collect(study, variants, measures, output, ranks, axis="core_seconds"):
     """Per variant: status, settings, cost and quantity values; then errors against the
     reference's seed mean, noise floors, Pareto fronts and the cost model."""
@@ -84,15 +102,22 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
               "cost_axis": axis,
               "reference": study.reference, "seeds": study.seeds, "variants": rows,
               "quantities": {}}
+    settings = _settings_groups(done, axis)
+    result["settings"] = settings
     for q in measures:
         seed_values = [r["values"][q.name] for r in refs]
         ref = reference_value(q.kind, seed_values)
         floor = noise_floor(q.kind, seed_values, ref)
         for r in done:
             r.setdefault("errors", {})[q.name] = error(q.kind, r["values"][q.name], ref)
-        points = [(r[axis], r["errors"][q.name]) for r in done
-                  if r["errors"][q.name] is not None]
-        names = [r["name"] for r in done if r["errors"][q.name] is not None]
+        # A setting run on several packings is one point: the error of its packings' mean
+        # (the scatter between them is the noise floor's business, not the setting's).
+        for g in settings:
+            values = [r["values"][q.name] for r in g["rows"]]
+            g["errors"][q.name] = error(q.kind, reference_value(q.kind, values), ref)
+        points = [(g[axis], g["errors"][q.name]) for g in settings
+                  if g["errors"][q.name] is not None]
+        names = [g["name"] for g in settings if g["errors"][q.name] is not None]
         front = [names[i] for i in pareto_front(points)]
         recommended = {}
         for t in TARGETS:
@@ -102,6 +127,8 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
             "kind": q.kind, "unit": q.unit, "noise_floor": floor,
             "reference_value": ref if q.kind == SCALAR or ref is None else "mean of seeds",
             "pareto_front": front, "recommended": recommended}
+    for g in settings:
+        del g["rows"]
     timed = "stepping_cpu_seconds" if axis == "cpu_seconds" else "stepping_core_seconds"
     if len(done) >= 2 and all(r["particle_steps"] > 0 for r in done):
         predicted, errs, rate = predict_costs([r["particle_steps"] for r in done],
@@ -242,9 +269,15 @@ def draw(result, measures, path, dpi):
                     else "C0", ms=5)
             ax.annotate(_short_label(r, result), (c, 100 * y), fontsize=6,
                         xytext=(3, 3), textcoords="offset points")
-        front = [next(p for p in pts if p[2]["name"] == name) for name in info["pareto_front"]]
-        ax.step([c for c, _, _ in front], [100 * max(e, floor_y) for _, e, _ in front],
-                where="post", color="C3", lw=1.2, label="Pareto front")
+        groups = {g["name"]: g for g in result["settings"]}
+        for g in groups.values():
+            if len(g["members"]) > 1 and g["errors"][q.name] is not None:
+                ax.plot(g[axis], 100 * max(g["errors"][q.name], floor_y), "D", mfc="none",
+                        color="C3", ms=7)
+        front = [groups[name] for name in info["pareto_front"]]
+        ax.step([g[axis] for g in front], [100 * max(g["errors"][q.name], floor_y) for g in front],
+                where="post", color="C3", lw=1.2,
+                label="Pareto front (a setting on several packings: their mean, ◇)")
         if info["noise_floor"]:
             ax.axhspan(100 * floor_y, 100 * info["noise_floor"], color="0.85", zorder=0,
                        label=f"noise floor (seeds) {100 * info['noise_floor']:.2g} %")
@@ -285,6 +318,16 @@ def write_markdown(result, measures, path):
                      + f" | {r['particle_steps']:.3g} | {r['core_seconds']:.0f} | {cpu} | "
                      + f"{_pct(r.get('prediction_error'))} / "
                      + f"{_pct(r.get('prediction_error_with_updates'))} |")
+    if any(len(g["members"]) > 1 for g in result["settings"]):
+        lines.append("")
+        lines.append("| setting | packings | " + " | ".join(f"{n} error of the mean" for n in names)
+                     + " | mean core-s |")
+        lines.append("|---" * (len(names) + 3) + "|")
+        axis = result["cost_axis"]
+        for g in result["settings"]:
+            lines.append(f"| {g['label'] or 'reference'} | {g['name']} | "
+                         + " | ".join(_pct(g["errors"][n]) for n in names)
+                         + f" | {g[axis]:.4g} |")
     lines.append("")
     lines.append("| quantity | noise floor | Pareto front | cheapest within 1 % / 5 % / 15 % |")
     lines.append("|---|---|---|---|")
