@@ -71,7 +71,14 @@ ConsolidationResult consolidate(Rve& rve) {
   const PreparationSpec& prep = spec.preparation;
   ConsolidationResult result;
   long steps_left = prep.max_steps;
-  double friction = spec.contact.friction;
+  const double contact_friction = spec.contact.friction;
+  double friction = prep.consolidation_friction.value_or(contact_friction);
+  if (friction != contact_friction) {
+    rve.set_friction(friction);
+    // The re-issued pair style has a neighbour list only after a set-up (the contact measures
+    // read it); the loose packing has no contact history yet for a set-up to advance.
+    rve.engine().command("run 0");
+  }
   result.friction_used = friction;
   result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
   if (prep.target_void_ratio) {
@@ -82,17 +89,23 @@ ConsolidationResult consolidate(Rve& rve) {
     // target) or the packing settles. Measured: halving the friction at once overshot by 0.02
     // in 3D (400 spheres); settled stages without the crossing stop jump past the target in
     // 2D (e = 0.2129 at friction 0.175 and 0.135, 0.1982 at 0.068 for a target 0.2083).
+    // Stages above the contact friction (a looser start, consolidation_friction_deg) settle
+    // fully and pass through the contact friction itself: stopping one early would leave the
+    // compaction to the contact friction afterwards, past the target.
     const double stop = target + 0.25 * prep.void_ratio_tolerance;
     while (result.final.void_ratio > stop && friction > 0.0) {
+      const double previous = friction;
       friction = friction > 1e-3 ? kFrictionStep * friction : 0.0;
+      if (previous > contact_friction && friction < contact_friction)
+        friction = contact_friction;
       rve.set_friction(friction);
-      result.final =
-          servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left, stop);
+      result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left,
+                                     friction > contact_friction ? 0.0 : stop);
     }
     result.friction_used = friction;
     result.compacted_void_ratio = result.final.void_ratio;
-    if (friction != spec.contact.friction) {
-      rve.set_friction(spec.contact.friction);
+    if (friction != contact_friction) {
+      rve.set_friction(contact_friction);
       result.final = servo_isotropic(rve, prep.confining_pressure, prep.tolerance, steps_left);
     }
     result.void_ratio_error = result.final.void_ratio - target;

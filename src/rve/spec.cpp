@@ -91,6 +91,12 @@ PreparationSpec parse_preparation(const CaseNode& node, int dimension) {
   p.confining_pressure = node.positive("confining_pressure");
   if (node.has("target_void_ratio"))
     p.target_void_ratio = node.positive("target_void_ratio");
+  if (node.has("consolidation_friction_deg")) {
+    if (!p.target_void_ratio)
+      node.fail("consolidation_friction_deg", "needs preparation.target_void_ratio");
+    p.consolidation_friction =
+        std::tan(node.in_range("consolidation_friction_deg", 0.0, 89.0) * kPi / 180);
+  }
   p.tolerance = node.in_range_or("tolerance", 1e-4, 0.02, 0.005);
   p.void_ratio_tolerance = node.in_range_or("void_ratio_tolerance", 1e-4, 0.1, 0.005);
   const double dense = dimension == 2 ? 0.8 : 0.6;
@@ -226,8 +232,15 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   if (seed < 0)
     node.fail("seed", "must be >= 0");
   s.seed = static_cast<std::uint64_t>(seed);
-  if (s.restart_file.empty())
+  if (s.restart_file.empty()) {
     s.preparation = parse_preparation(node.child("preparation"), s.dimension);
+    if (s.preparation.consolidation_friction &&
+        *s.preparation.consolidation_friction < s.contact.friction)
+      node.child("preparation")
+          .fail("consolidation_friction_deg",
+                "must be at least the contact friction (a lower one packs denser, which the "
+                "staged lowering towards target_void_ratio does already)");
+  }
   if (s.dimension == 2)
     s.thickness = node.positive_or("thickness", 2.0 * s.radius.mean());
 

@@ -32,6 +32,9 @@ struct ContactSpec {
 struct PreparationSpec {
   double confining_pressure = 0.0;          //!< isotropic target p [Pa]
   std::optional<double> target_void_ratio;  //!< reached by lowering friction while compacting
+  //! Friction coefficient of the first consolidation (a higher one packs looser, so that the
+  //! staged lowering can reach a looser target); none: the contact law's.
+  std::optional<double> consolidation_friction;
   double tolerance = 0.005;                 //!< relative pressure tolerance at the end
   double void_ratio_tolerance = 0.005;      //!< allowed |reached - target void ratio|
   double initial_solid_fraction = 0.0;      //!< of the loose random packing
