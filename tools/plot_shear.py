@@ -25,7 +25,7 @@ import numpy as np
 from mpm_lig_post import cli, figures
 from mpm_lig_post.errors import InputError
 from mpm_lig_post.fields import FieldFile
-from mpm_lig_post.shear import count_cycles, cycle_table, shear_series
+from mpm_lig_post.shear import count_cycles, cycle_table, cycles_to_liquefaction, shear_series
 from mpm_lig_post.tables import read_history
 
 def print_table(rows):
@@ -129,6 +129,9 @@ def main():
     cycle = count_cycles(gamma) if cycle is None else np.rint(cycle).astype(int)
     rows = cycle_table(gamma, tau, p, cycle)
     print_table(rows)
+    liquefied = cycles_to_liquefaction(gamma, p)
+    print("p' < 0.1 p'0: " + ("not reached" if liquefied is None
+                              else f"after {liquefied:.1f} cycles of strain path"))
     points = None
     if args.points:
         times, height, pressure, point_gamma = point_series(directory)

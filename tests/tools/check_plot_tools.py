@@ -105,6 +105,20 @@ def shear_element(work):
     expect(result.returncode == 0, "plot_shear failed")
     check_shear_table(result.stdout)
     check_picture(os.path.join(work, "shear.png"))
+    # p = P0 0.6^c with c the cycles of time: below 0.1 P0 only after 4.51 cycles (this path
+    # has 4); below 0.3 P0 after c = ln 0.3 / ln 0.6 = 2.357, which on the sine strain path is
+    # 2 + (1 + 1 - sin(2π 0.357)) / 4 cycles of path (the first row past it: 1/40 cycle later).
+    expect("p' < 0.1 p'0: not reached" in result.stdout, "liquefaction line")
+    sys.path.insert(0, TOOLS)
+    from mpm_lig_post.shear import cycles_to_liquefaction
+    at = cycles_to_liquefaction(np.array(gamma), np.array(p), fraction=0.3)
+    c = math.log(0.3) / math.log(P_RATIO)
+    phase = c - math.floor(c)
+    quarter = math.floor(4 * phase)
+    expected = math.floor(c) + (quarter + abs(math.sin(2 * math.pi * phase)
+                                              - math.sin(math.pi * quarter / 2))) / 4
+    expect(at is not None and expected <= at < expected + 1 / 40,
+           f"p < 0.3 p0 after {at} cycles of path, expected {expected}")
 
 
 def shear_mpm(work):

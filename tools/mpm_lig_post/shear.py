@@ -46,3 +46,14 @@ def cycle_table(gamma, tau, p, cycle):
         rows.append((int(c), 0.5 * span, np.max(np.abs(t)), modulus, p[idx[-1]],
                      p[idx[-1]] / p[0] if p[0] != 0 else np.nan))
     return rows
+
+
+def cycles_to_liquefaction(gamma, p, fraction=0.1):
+    """Cycles of strain path (4 gamma_a each) travelled when p first falls below fraction x p0,
+    or None when it never does."""
+    below = np.flatnonzero(p < fraction * p[0])
+    amplitude = np.max(np.abs(gamma))
+    if not below.size or amplitude <= 0:
+        return None
+    travelled = np.concatenate(([0.0], np.cumsum(np.abs(np.diff(gamma)))))
+    return float(travelled[below[0]] / (4 * amplitude))
