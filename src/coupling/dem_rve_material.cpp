@@ -269,7 +269,7 @@ std::vector<Mat3> DemRveMaterial::dem_increments(const std::vector<std::size_t>&
                                                 std::vector<long>& batch_index) {
   if (!quiet_.enabled())
     return dF;
-  std::vector<Mat3> increments(dF.size());
+  std::vector<Mat3> increments = dF;  // a quiet point's entry is only booked (zero steps)
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (quiet_.accumulate(points[i], dF[i]))
       increments[i] = quiet_.pending(points[i]);
