@@ -123,10 +123,16 @@ void require_void_ratio(const Rve& rve, const ConsolidationResult& result) {
   message << rve.label() << ": preparation reached void ratio " << result.final.void_ratio << ", "
           << rve.spec().path << ".preparation.target_void_ratio asks " << *prep.target_void_ratio
           << " +- " << prep.void_ratio_tolerance;
-  if (result.friction_used == rve.spec().contact.friction)
+  const double contact_friction = rve.spec().contact.friction;
+  const std::string looser = rve.spec().path + ".preparation.consolidation_friction_deg";
+  if (result.void_ratio_error < 0.0 && result.friction_used > contact_friction)
+    message << " (the first consolidation at friction " << result.friction_used
+            << " already packs it denser: a higher " << looser << " packs looser)";
+  else if (result.friction_used == contact_friction)
     message << (result.void_ratio_error > 0.0
                     ? ""
-                    : " (the full friction already packs it denser; preparation only densifies)");
+                    : " (the full friction already packs it denser; preparation only densifies "
+                      "unless " + looser + " packs it looser first)");
   else
     message << " (compaction ended at " << result.compacted_void_ratio << " with friction "
             << result.friction_used
