@@ -19,8 +19,9 @@ struct CheckpointFolder {
   //! The identity of the build that wrote the checkpoint (core/build_id.h), one line.
   static constexpr const char* kBuild = "build";
   //! Layout of a checkpoint, kept in mpm.h5 ("format"; absent = 1). 2: a DEM point keeps its
-  //! grains' exact placement beside its engine restart (point_<i>.restart.placement).
-  static constexpr int kFormat = 2;
+  //! grains' exact placement beside its engine restart (point_<i>.restart.placement). 3: and
+  //! its quiet-point state (the point field quiet_points, and the quiet_* run statistics).
+  static constexpr int kFormat = 3;
 
   //! `run_dir/checkpoints`.
   static std::string root(const std::string& run_dir);
