@@ -301,12 +301,14 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
     batch_index[points[i]] = static_cast<long>(i);
   const std::vector<Mat3> increments = dem_increments(points, dF, batch_index);
 
+  // The stresses before the update, the same on every rank (deform_owned overwrites the owned
+  // points' entries: taken after it, the low-stress share would depend on the rank count).
+  const std::vector<Mat3> before = stress_;
   const double start = MPI_Wtime();
   std::vector<Mat3> owned_stress;
   std::vector<double> owned_steps;
   deform_owned(batch_index, increments, owned_stress, owned_steps);
   const double computed = MPI_Wtime();
-  const std::vector<Mat3> before = stress_;
   stress_ = layout_->gather(owned_stress);
   substeps_ = layout_->gather(owned_steps, 1);
   settle_quiet_points(points, batch_index);

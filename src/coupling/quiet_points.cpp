@@ -14,11 +14,7 @@ constexpr double kMeasurableStrain = 0.1;
 //! A volumetric or deviatoric part smaller than this fraction of the increment measures nothing.
 constexpr double kMeasurablePart = 0.1;
 
-Mat3 spin_of(const Mat3& stress, const Mat3& increment) {
-  const Mat3 inc = increment - Mat3::Identity();
-  const Mat3 omega = 0.5 * (inc - inc.transpose());
-  return omega * stress - stress * omega;
-}
+
 
 //! Trace over the first `d` axes (the plane of a 2D packing, all three in 3D).
 double trace_d(const Mat3& a, int d) {
@@ -39,6 +35,13 @@ Mat3 identity_d(int d) {
   for (int i = 0; i < d; ++i)
     b(i, i) = 1.0;
   return b;
+}
+
+//! The first-order rotation of `stress` by the spin of `increment` in the first `d` axes.
+Mat3 spin_of(const Mat3& stress, const Mat3& increment, int d) {
+  const Mat3 inc = increment - Mat3::Identity();
+  const Mat3 omega = in_plane(0.5 * (inc - inc.transpose()), d);
+  return omega * stress - stress * omega;
 }
 
 }  // namespace
@@ -86,7 +89,7 @@ Mat3 QuietPoints::predict(const Mat3& anchor, const Mat3& increment, double bulk
   const double volumetric = trace_d(strain, d);
   const Mat3 deviatoric = strain - (volumetric / d) * identity_d(d);
   return anchor + bulk * volumetric * identity_d(d) + 2.0 * shear * deviatoric +
-         spin_of(anchor, increment);
+         spin_of(anchor, increment, d);
 }
 
 bool QuietPoints::accumulate(std::size_t point, const Mat3& dF) {
@@ -134,7 +137,7 @@ void QuietPoints::measure_moduli(std::size_t point, const Mat3& stress) {
   const double size = strain.norm();
   if (!(size >= kMeasurableStrain * spec_.tolerance))
     return;
-  const Mat3 change = in_plane(stress - anchor_[point] - spin_of(anchor_[point], increment), d);
+  const Mat3 change = in_plane(stress - anchor_[point] - spin_of(anchor_[point], increment, d), d);
   const double volumetric = trace_d(strain, d);
   const Mat3 deviatoric = strain - (volumetric / d) * identity_d(d);
   Row& r = row(point);

@@ -23,8 +23,6 @@ struct MaterialContext {
   TestHooks hooks;                 //!< fault injection asked for by the tests
 };
 
-//! Cost counters of a material whose points run simulations of their own (DEM RVEs). The
-//! same on every rank except the times, which are this rank's.
 //! Stresses predicted instead of computed (a DEM material's quiet points), and the checks of
 //! those predictions against real updates.
 struct PredictionCost {
@@ -37,6 +35,8 @@ struct PredictionCost {
   double exceeded = 0.0;  //!< checks above the material's error bound
 };
 
+//! Cost counters of a material whose points run simulations of their own (DEM RVEs). The
+//! same on every rank except the times, which are this rank's.
 struct MaterialCost {
   std::size_t simulations = 0;         //!< RVEs (all ranks)
   double particle_steps = 0.0;         //!< DEM grain-steps so far, each RVE counted once

@@ -126,7 +126,7 @@ void require_void_ratio(const Rve& rve, const ConsolidationResult& result) {
   const double contact_friction = rve.spec().contact.friction;
   const std::string looser = rve.spec().path + ".preparation.consolidation_friction_deg";
   if (result.void_ratio_error < 0.0 && result.friction_used > contact_friction)
-    message << " (the first consolidation at friction " << result.friction_used
+    message << " (a consolidation at friction " << result.friction_used
             << " already packs it denser: a higher " << looser << " packs looser)";
   else if (result.friction_used == contact_friction)
     message << (result.void_ratio_error > 0.0

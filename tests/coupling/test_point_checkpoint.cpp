@@ -39,6 +39,8 @@ PointCheckpoint sample(double seed) {
   p.rve.last_mean_stress = -seed * 1e5;
   for (int k = 0; k < DemWork::kValues; ++k)
     p.work[k] = seed * 1e3 + k;
+  for (int k = 0; k < QuietPoints::kValues; ++k)
+    p.quiet[k] = seed * 1e4 - k;
   return p;
 }
 
@@ -72,6 +74,8 @@ TEST(PointCheckpoint, NamedArraysRoundTripEveryField) {
     EXPECT_EQ(got.rve.last_mean_stress, want.rve.last_mean_stress);
     for (int k = 0; k < DemWork::kValues; ++k)
       EXPECT_EQ(got.work[k], want.work[k]);
+    for (int k = 0; k < QuietPoints::kValues; ++k)
+      EXPECT_EQ(got.quiet[k], want.quiet[k]);
   }
 }
 

@@ -114,7 +114,10 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
         # (the scatter between them is the noise floor's business, not the setting's).
         for g in settings:
             values = [r["values"][q.name] for r in g["rows"]]
-            g["errors"][q.name] = error(q.kind, reference_value(q.kind, values), ref)
+            # A setting whose packings did not all reach the quantity (one never liquefied) has
+            # no mean to compare: no error rather than the mean of the lucky ones.
+            g["errors"][q.name] = (None if any(v is None for v in values)
+                                   else error(q.kind, reference_value(q.kind, values), ref))
         points = [(g[axis], g["errors"][q.name]) for g in settings
                   if g["errors"][q.name] is not None]
         names = [g["name"] for g in settings if g["errors"][q.name] is not None]
@@ -321,7 +324,7 @@ def write_markdown(result, measures, path):
     if any(len(g["members"]) > 1 for g in result["settings"]):
         lines.append("")
         lines.append("| setting | packings | " + " | ".join(f"{n} error of the mean" for n in names)
-                     + " | mean core-s |")
+                     + f" | mean {result['cost_axis'].replace('_', ' ')} |")
         lines.append("|---" * (len(names) + 3) + "|")
         axis = result["cost_axis"]
         for g in result["settings"]:
