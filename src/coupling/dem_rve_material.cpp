@@ -265,8 +265,8 @@ void DemRveMaterial::deform_owned(const std::vector<long>& batch_index, const st
 }
 
 std::vector<Mat3> DemRveMaterial::dem_increments(const std::vector<std::size_t>& points,
-                                                const std::vector<Mat3>& dF,
-                                                std::vector<long>& batch_index) {
+                                                 const std::vector<Mat3>& dF,
+                                                 std::vector<long>& batch_index) {
   if (!quiet_.enabled())
     return dF;
   std::vector<Mat3> increments = dF;  // a quiet point's entry is only booked (zero steps)

@@ -17,10 +17,10 @@ namespace mpm_lig::coupling {
 //! other fields is refused by name. A new field is a member here and a line in the table of
 //! point_checkpoint.cpp.
 struct PointCheckpoint {
-  Mat3 stress = Mat3::Zero();          //!< last homogenised stress, physical frame
-  double substeps = 0.0;               //!< DEM steps of its last update
-  rve::Rve::State rve;                 //!< rotation, streaming gradient, counters
-  double work[DemWork::kValues] = {};  //!< the point's DEM work (DemWork row)
+  Mat3 stress = Mat3::Zero();               //!< last homogenised stress, physical frame
+  double substeps = 0.0;                    //!< DEM steps of its last update
+  rve::Rve::State rve;                      //!< rotation, streaming gradient, counters
+  double work[DemWork::kValues] = {};       //!< the point's DEM work (DemWork row)
   double quiet[QuietPoints::kValues] = {};  //!< its quiet-point state (QuietPoints row)
 };
 

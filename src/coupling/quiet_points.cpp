@@ -14,8 +14,6 @@ constexpr double kMeasurableStrain = 0.1;
 //! A volumetric or deviatoric part smaller than this fraction of the increment measures nothing.
 constexpr double kMeasurablePart = 0.1;
 
-
-
 //! Trace over the first `d` axes (the plane of a 2D packing, all three in 3D).
 double trace_d(const Mat3& a, int d) {
   double t = 0.0;

@@ -303,9 +303,8 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
     s["quiet_points"] = {
         {"predicted_updates", q.predictions},
         {"dem_updates", q.updates},
-        {"predicted_share", q.predictions + q.updates > 0.0
-                                ? q.predictions / (q.predictions + q.updates)
-                                : 0.0},
+        {"predicted_share",
+         q.predictions + q.updates > 0.0 ? q.predictions / (q.predictions + q.updates) : 0.0},
         {"checks", q.checks},
         {"mean_error", q.checks > 0.0 ? q.error_sum / q.checks : 0.0},
         {"max_error", q.max_error},

@@ -132,7 +132,8 @@ void require_void_ratio(const Rve& rve, const ConsolidationResult& result) {
     message << (result.void_ratio_error > 0.0
                     ? ""
                     : " (the full friction already packs it denser; preparation only densifies "
-                      "unless " + looser + " packs it looser first)");
+                      "unless " +
+                          looser + " packs it looser first)");
   else
     message << " (compaction ended at " << result.compacted_void_ratio << " with friction "
             << result.friction_used

@@ -35,11 +35,11 @@ struct PreparationSpec {
   //! Friction coefficient of the first consolidation (a higher one packs looser, so that the
   //! staged lowering can reach a looser target); none: the contact law's.
   std::optional<double> consolidation_friction;
-  double tolerance = 0.005;                 //!< relative pressure tolerance at the end
-  double void_ratio_tolerance = 0.005;      //!< allowed |reached - target void ratio|
-  double initial_solid_fraction = 0.0;      //!< of the loose random packing
-  double max_strain_rate = 0.0;             //!< servo strain rate limit [1/s]
-  long max_steps = 0;                       //!< DEM step budget for the whole preparation
+  double tolerance = 0.005;             //!< relative pressure tolerance at the end
+  double void_ratio_tolerance = 0.005;  //!< allowed |reached - target void ratio|
+  double initial_solid_fraction = 0.0;  //!< of the loose random packing
+  double max_strain_rate = 0.0;         //!< servo strain rate limit [1/s]
+  long max_steps = 0;                   //!< DEM step budget for the whole preparation
 };
 
 //! How many DEM steps one deformation increment takes.

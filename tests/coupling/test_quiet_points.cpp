@@ -154,9 +154,10 @@ TEST(QuietPoints, SecantStifferThanThePackingIsNotTaken) {
   const Mat3 start = q.predicted(0);
   q.accumulate(0, step(1e-6));
   // Still the packing's starting pair: K = G = M / 2.
-  EXPECT_LT((q.predicted(0) - linear_soil(start, step(1e-6), 0.5 * kWaveModulus,
-                                          0.5 * kWaveModulus)).norm(),
-            1e-9 * start.norm());
+  EXPECT_LT(
+      (q.predicted(0) - linear_soil(start, step(1e-6), 0.5 * kWaveModulus, 0.5 * kWaveModulus))
+          .norm(),
+      1e-9 * start.norm());
 }
 
 TEST(QuietPoints, CheckpointRowContinuesIdentically) {

@@ -86,13 +86,15 @@ TEST(RveCompaction, LooserTargetReachedWithConsolidationFriction) {
                                         target + R"(, "consolidation_friction_deg": 45})");
   auto with = rve::Rve::generate(looser, MPI_COMM_WORLD, "with");
   const rve::ConsolidationResult c = rve::consolidate(*with);
-  std::printf("2D looser: full friction %.4f, target %s, reached %.4f (compacted %.4f at "
-              "friction %.4f)\n",
-              full, target.c_str(), c.final.void_ratio, c.compacted_void_ratio, c.friction_used);
+  std::printf(
+      "2D looser: full friction %.4f, target %s, reached %.4f (compacted %.4f at "
+      "friction %.4f)\n",
+      full, target.c_str(), c.final.void_ratio, c.compacted_void_ratio, c.friction_used);
   EXPECT_TRUE(c.void_ratio_reached);
   EXPECT_NO_THROW(rve::require_void_ratio(*with, c));
   EXPECT_GT(c.final.void_ratio, full + 0.002);
-  EXPECT_NEAR(mean_pressure(c.final.stress, 2), kPressure, looser.preparation.tolerance * kPressure);
+  EXPECT_NEAR(mean_pressure(c.final.stress, 2), kPressure,
+              looser.preparation.tolerance * kPressure);
 }
 
 // 3D (60 spheres), target 0.03 below the full-friction void ratio: the staged compaction does
