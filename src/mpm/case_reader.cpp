@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "mpm/case_spec.h"
+#include "mpm/resources.h"
 #include "mpm/shape_function.h"
 
 namespace mpm_lig::mpm {
@@ -248,6 +249,28 @@ bool box_holds_a_node(const Box& box, const MpmCase& c) {
   return true;
 }
 
+//! Whether some material point lies in `box`: each body's points are a grid (fill_body), and
+//! the solver selects the points of a traction box with no tolerance.
+bool box_holds_a_point(const Box& box, const MpmCase& c) {
+  for (const Body& body : c.bodies) {
+    const std::vector<double> along = points_along_axes(c, body);
+    bool every_axis = true;
+    for (int d = 0; d < c.dimension && every_axis; ++d) {
+      const long count = static_cast<long>(along[d]);
+      const double spacing = (body.box.max[d] - body.box.min[d]) / count;
+      bool some = false;
+      for (long i = 0; i < count && !some; ++i) {
+        const double x = body.box.min[d] + (i + 0.5) * spacing;
+        some = x >= box.min[d] && x <= box.max[d];
+      }
+      every_axis = some;
+    }
+    if (every_axis)
+      return true;
+  }
+  return false;
+}
+
 NodeSelector read_nodes(const CaseNode& node, const MpmCase& c) {
   const CaseNode n = node.child("nodes");
   if (n.has("box") == n.has("face"))
@@ -292,6 +315,10 @@ void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
       });
       if (!on_a_body)
         b.fail("points", "the box holds no material point (it overlaps no body)");
+      if (!box_holds_a_point(t.points, c))
+        b.fail("points",
+               "the box holds no material point (it lies between the rows of points its body "
+               "is filled with: widen it or move it onto a row)");
       t.function = TimeFunction::read(b, "function");
       c.tractions.push_back(std::move(t));
       continue;
