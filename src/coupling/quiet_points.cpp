@@ -35,6 +35,21 @@ Mat3 identity_d(int d) {
   return b;
 }
 
+//! The small strain of `increment` in the first `d` axes, split into volumetric and
+//! deviatoric parts.
+struct StrainParts {
+  Mat3 strain;
+  double volumetric;
+  Mat3 deviatoric;
+};
+
+StrainParts strain_parts(const Mat3& increment, int d) {
+  const Mat3 inc = increment - Mat3::Identity();
+  const Mat3 strain = in_plane(0.5 * (inc + inc.transpose()), d);
+  const double volumetric = trace_d(strain, d);
+  return {strain, volumetric, strain - (volumetric / d) * identity_d(d)};
+}
+
 //! The first-order rotation of `stress` by the spin of `increment` in the first `d` axes.
 Mat3 spin_of(const Mat3& stress, const Mat3& increment, int d) {
   const Mat3 inc = increment - Mat3::Identity();
@@ -82,11 +97,8 @@ void QuietPoints::set_packing(std::size_t point, const Mat3& stress, double wave
 Mat3 QuietPoints::predict(const Mat3& anchor, const Mat3& increment, double bulk,
                           double shear) const {
   const int d = dimension_;
-  const Mat3 inc = increment - Mat3::Identity();
-  const Mat3 strain = in_plane(0.5 * (inc + inc.transpose()), d);
-  const double volumetric = trace_d(strain, d);
-  const Mat3 deviatoric = strain - (volumetric / d) * identity_d(d);
-  return anchor + bulk * volumetric * identity_d(d) + 2.0 * shear * deviatoric +
+  const StrainParts e = strain_parts(increment, d);
+  return anchor + bulk * e.volumetric * identity_d(d) + 2.0 * shear * e.deviatoric +
          spin_of(anchor, increment, d);
 }
 
@@ -130,20 +142,17 @@ void QuietPoints::after_dem(std::size_t point, const Mat3& stress) {
 void QuietPoints::measure_moduli(std::size_t point, const Mat3& stress) {
   const int d = dimension_;
   const Mat3& increment = pending_[point];
-  const Mat3 inc = increment - Mat3::Identity();
-  const Mat3 strain = in_plane(0.5 * (inc + inc.transpose()), d);
-  const double size = strain.norm();
+  const StrainParts e = strain_parts(increment, d);
+  const double size = e.strain.norm();
   if (!(size >= kMeasurableStrain * spec_.tolerance))
     return;
   const Mat3 change = in_plane(stress - anchor_[point] - spin_of(anchor_[point], increment, d), d);
-  const double volumetric = trace_d(strain, d);
-  const Mat3 deviatoric = strain - (volumetric / d) * identity_d(d);
   Row& r = row(point);
   double bulk = 0.0, shear = 0.0;
-  if (std::abs(volumetric) >= kMeasurablePart * size)
-    bulk = (trace_d(change, d) / d) / volumetric;
-  if (deviatoric.norm() >= kMeasurablePart * size)
-    shear = (change.cwiseProduct(deviatoric)).sum() / (2.0 * deviatoric.squaredNorm());
+  if (std::abs(e.volumetric) >= kMeasurablePart * size)
+    bulk = (trace_d(change, d) / d) / e.volumetric;
+  if (e.deviatoric.norm() >= kMeasurablePart * size)
+    shear = (change.cwiseProduct(e.deviatoric)).sum() / (2.0 * e.deviatoric.squaredNorm());
   // A secant that is not a stiffness (softening, dilatancy under shear, the noise of a small
   // increment) keeps the last one measured; the checks catch what that misses.
   if (std::isfinite(bulk) && bulk > 0.0 && bulk <= r.wave_modulus)
