@@ -249,26 +249,18 @@ bool box_holds_a_node(const Box& box, const MpmCase& c) {
   return true;
 }
 
-//! Whether some material point lies in `box`: each body's points are a grid (fill_body), and
-//! the solver selects the points of a traction box with no tolerance.
+//! Whether some material point lies in `box` (the points of a body are a grid; the solver
+//! selects the points of a traction box with no tolerance).
 bool box_holds_a_point(const Box& box, const MpmCase& c) {
-  for (const Body& body : c.bodies) {
-    const std::vector<double> along = points_along_axes(c, body);
-    bool every_axis = true;
-    for (int d = 0; d < c.dimension && every_axis; ++d) {
-      const long count = static_cast<long>(along[d]);
-      const double spacing = (body.box.max[d] - body.box.min[d]) / count;
-      bool some = false;
-      for (long i = 0; i < count && !some; ++i) {
-        const double x = body.box.min[d] + (i + 0.5) * spacing;
-        some = x >= box.min[d] && x <= box.max[d];
-      }
-      every_axis = some;
+  return std::any_of(c.bodies.begin(), c.bodies.end(), [&](const Body& body) {
+    for (int d = 0; d < c.dimension; ++d) {
+      const std::vector<double> x = point_coordinates(c, body, d);
+      if (std::none_of(x.begin(), x.end(),
+                       [&](double v) { return v >= box.min[d] && v <= box.max[d]; }))
+        return false;
     }
-    if (every_axis)
-      return true;
-  }
-  return false;
+    return true;
+  });
 }
 
 NodeSelector read_nodes(const CaseNode& node, const MpmCase& c) {

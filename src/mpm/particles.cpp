@@ -13,6 +13,7 @@ void fill_body(const MpmCase& c, MaterialSet& materials, int body_index, Particl
   const Body& body = c.bodies[body_index];
   materials::Material& material = *materials[body.material];
   std::array<long, D> count{};
+  std::array<std::vector<double>, D> coordinates;
   Vec spacing, cell;
   long total = 1;
   const std::vector<double> along = points_along_axes(c, body);
@@ -20,6 +21,7 @@ void fill_body(const MpmCase& c, MaterialSet& materials, int body_index, Particl
     cell[d] = c.size[d] / c.cells[d];
     count[d] = static_cast<long>(along[d]);
     spacing[d] = (body.box.max[d] - body.box.min[d]) / count[d];
+    coordinates[d] = point_coordinates(c, body, d);
     total *= count[d];
   }
   const double volume = spacing.prod();
@@ -28,7 +30,7 @@ void fill_body(const MpmCase& c, MaterialSet& materials, int body_index, Particl
     Vec x;
     long rest = k;
     for (int d = 0; d < D; ++d) {
-      x[d] = body.box.min[d] + (rest % count[d] + 0.5) * spacing[d];
+      x[d] = coordinates[d][rest % count[d]];
       rest /= count[d];
     }
     Vec v = Eigen::Map<const Vec>(body.velocity.data());

@@ -32,6 +32,15 @@ std::vector<double> points_along_axes(const MpmCase& c, const Body& body) {
   return along;
 }
 
+std::vector<double> point_coordinates(const MpmCase& c, const Body& body, int axis) {
+  const long count = static_cast<long>(points_along_axes(c, body)[axis]);
+  const double spacing = (body.box.max[axis] - body.box.min[axis]) / count;
+  std::vector<double> x(count);
+  for (long i = 0; i < count; ++i)
+    x[i] = body.box.min[axis] + (i + 0.5) * spacing;
+  return x;
+}
+
 std::vector<double> points_per_material(const MpmCase& c) {
   std::vector<double> points(c.material_ids.size(), 0.0);
   for (const Body& body : c.bodies) {

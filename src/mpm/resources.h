@@ -10,6 +10,9 @@ namespace mpm_lig::mpm {
 
 //! Material points along each axis of `body` (as generate_particles places them).
 std::vector<double> points_along_axes(const MpmCase& c, const Body& body);
+//! Where a body's points lie along `axis`: the middles of equal spacings filling its box (the
+//! points are the grid of these coordinates over the axes).
+std::vector<double> point_coordinates(const MpmCase& c, const Body& body, int axis);
 
 //! Material points per material that the bodies of `c` will hold.
 std::vector<double> points_per_material(const MpmCase& c);
