@@ -19,22 +19,26 @@ namespace {
 //! Strain of the uniaxial probe that measures a packing's constrained modulus: small enough
 //! to stay elastic, large enough to rise above the packing's stress fluctuations.
 constexpr double kProbeStrain = 1e-4;
-constexpr int kPackingValues = 11;  // stress (9), void ratio, wave modulus
+constexpr int kPackingValues = 12;  // stress (9), void ratio, wave and lateral moduli
 
-//! Constrained modulus M = Δσ_xx / ε_xx from a uniaxial compression of `rve`. Destroys the
-//! state of `rve`: call after its restart file is written.
-double probe_wave_modulus(rve::Rve& rve) {
-  const double before = rve.stress()(0, 0);
+//! Constrained modulus M = Δσ_xx / ε_xx and lateral modulus Δσ_yy / ε_xx of `packing` from a
+//! uniaxial compression of `rve`. Destroys the state of `rve`: call after its restart file is
+//! written.
+void probe_moduli(rve::Rve& rve, Packing& packing) {
+  const Mat3 before = rve.stress();
   Mat3 dF = Mat3::Identity();
   dF(0, 0) -= kProbeStrain;
   rve.deform(dF);
-  return std::abs(rve.stress()(0, 0) - before) / kProbeStrain;
+  const Mat3 change = rve.stress() - before;
+  packing.wave_modulus = std::abs(change(0, 0)) / kProbeStrain;
+  packing.lateral_modulus = -change(1, 1) / kProbeStrain;
 }
 
 std::vector<double> describe(const Packing& p) {
   std::vector<double> v(p.stress.data(), p.stress.data() + 9);
   v.push_back(p.void_ratio);
   v.push_back(p.wave_modulus);
+  v.push_back(p.lateral_modulus);
   return v;
 }
 
@@ -43,6 +47,7 @@ Packing packing_from(const double* v, const std::string& restart_file) {
   p.stress = Eigen::Map<const Mat3>(v);
   p.void_ratio = v[9];
   p.wave_modulus = v[10];
+  p.lateral_modulus = v[11];
   p.restart_file = restart_file;
   return p;
 }
@@ -73,6 +78,8 @@ DemRveMaterial::DemRveMaterial(const CaseNode& node) : path_(node.path()) {
     node.fail("ranks_per_rve", "must be >= 1");
   if (node.has("quiet"))
     quiet_spec_ = parse_quiet(node.child("quiet"));
+  if (node.has("start_as_continuum"))
+    continuum_start_spec_ = parse_continuum_start(node.child("start_as_continuum"));
 }
 
 DemRveMaterial::~DemRveMaterial() = default;
@@ -154,7 +161,7 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
     const rve::Observables now = rve->observe();
     p.stress = now.stress;
     p.void_ratio = now.void_ratio;
-    p.wave_modulus = probe_wave_modulus(*rve);
+    probe_moduli(*rve, p);
     const std::vector<double> v = describe(p);
     owned.insert(owned.end(), v.begin(), v.end());
   }
@@ -226,9 +233,11 @@ void DemRveMaterial::start_work_ledger() {
     p = mean_pressure(packings_.front().stress, spec_.dimension);
   work_.start(points_, static_cast<double>(spec_.grains),
               spec_.substeps.fixed > 0 ? 0 : spec_.substeps.max, p);
-  quiet_.start(points_, quiet_spec_, spec_.dimension, spec_.substeps.pressure_floor);
+  quiet_.start(points_, quiet_spec_, spec_.dimension, spec_.substeps.pressure_floor,
+               continuum_start_spec_);
   for (std::size_t point = 0; point < points_; ++point)
-    quiet_.set_packing(point, initial_stress(point), packings_[packing_of(point)].wave_modulus);
+    quiet_.set_packing(point, initial_stress(point), packings_[packing_of(point)].wave_modulus,
+                       packings_[packing_of(point)].lateral_modulus);
 }
 
 void DemRveMaterial::inject_fault_if_asked(std::size_t point, rve::Rve& rve) const {
@@ -328,8 +337,10 @@ namespace {
 
 //! The run statistics of the quiet points in a checkpoint (QuietPoints::save_stats order).
 const char* const kQuietStatNames[QuietPoints::kStatValues] = {
-    "quiet_predictions", "quiet_dem_updates", "quiet_checks",
-    "quiet_error_sum",   "quiet_max_error",   "quiet_exceeded"};
+    "quiet_predictions",  "quiet_dem_updates",        "quiet_checks",
+    "quiet_error_sum",    "quiet_max_error",          "quiet_exceeded",
+    "continuum_updates",  "continuum_switches",       "continuum_jump_sum",
+    "continuum_max_jump", "continuum_jumps_exceeded", "continuum_threshold_scale"};
 
 std::string checkpoint_file(const std::string& dir, std::size_t point) {
   return dir + "/point_" + std::to_string(point) + ".restart";
@@ -423,10 +434,12 @@ materials::MaterialCost DemRveMaterial::cost() const {
   c.particle_steps_at_max = work_.sum(1);
   c.particle_steps_low_stress = work_.sum(2);
   c.particle_steps_quiet = work_.sum(3);
-  if (quiet_.enabled()) {
-    const QuietStats& q = quiet_.stats();
+  const QuietStats& q = quiet_.stats();
+  if (quiet_.quiet_enabled())
     c.quiet = {true, q.predictions, q.dem_updates, q.checks, q.error_sum, q.max_error, q.exceeded};
-  }
+  if (quiet_.continuum_start_enabled())
+    c.continuum_start = {true,       q.continuum_updates, q.switches,       q.jump_sum,
+                         q.max_jump, q.jumps_exceeded,    q.threshold_scale};
   return c;
 }
 

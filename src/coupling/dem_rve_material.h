@@ -18,13 +18,14 @@ struct Packing {
   std::string restart_file;    //!< engine restart (contact history included)
   Mat3 stress = Mat3::Zero();  //!< its homogenised stress, physical frame
   double void_ratio = 0.0;
-  double wave_modulus = 0.0;  //!< measured constrained modulus [Pa]
+  double wave_modulus = 0.0;     //!< measured constrained modulus [Pa]
+  double lateral_modulus = 0.0;  //!< measured lateral stress change per axial strain [Pa]
 };
 
 //! The material law of a point is its own DEM packing (the "dem_rve" material).
 //!
 //! Case node: {"type": "dem_rve", "rve": {RVE spec}, "packings": K, "ranks_per_rve": g,
-//! "quiet": {QuietSpec}}.
+//! "quiet": {QuietSpec}, "start_as_continuum": {ContinuumStartSpec}}.
 //! `prepare()` consolidates K packings (seeds rve.seed + k) or takes `rve.restart_file`;
 //! point i is cloned from packing i mod K. The MPM is replicated on every rank, so every
 //! rank calls update() with the same batch; each rank group deforms the RVEs it owns and
@@ -111,6 +112,7 @@ class DemRveMaterial final : public materials::Material {
   std::vector<double> substeps_;                 //!< every point's last DEM step count
   DemWork work_;                                 //!< every point's DEM work (all ranks)
   QuietSpec quiet_spec_;
+  ContinuumStartSpec continuum_start_spec_;
   QuietPoints quiet_;  //!< every point's quiet state (all ranks)
   long updates_ = 0;
   int rank_ = 0;

@@ -8,6 +8,8 @@ namespace {
 
 //! A tolerance is never tightened below this fraction of the case's.
 constexpr double kTightestFraction = 1.0 / 1024.0;
+//! The switch thresholds of a continuum start are never halved below this fraction.
+constexpr double kSmallestThresholdScale = 1.0 / 64.0;
 //! An increment below this fraction of the tolerance is too small to measure moduli on (the
 //! packing's stress fluctuations would dominate its secant).
 constexpr double kMeasurableStrain = 0.1;
@@ -57,7 +59,28 @@ Mat3 spin_of(const Mat3& stress, const Mat3& increment, int d) {
   return omega * stress - stress * omega;
 }
 
+//! sin of the mobilised friction angle, (σ1 - σ3) / -(σ1 + σ3), of the principal stresses in
+//! the first `d` axes (tension positive); 1 when the stress is not compressive.
+double mobilised_sin_friction(const Mat3& stress, int d) {
+  const Eigen::MatrixXd plane = 0.5 * (stress + stress.transpose()).topLeftCorner(d, d);
+  const Eigen::VectorXd principal =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(plane, Eigen::EigenvaluesOnly).eigenvalues();
+  const double sum = principal.minCoeff() + principal.maxCoeff();
+  if (!(sum < 0.0))
+    return 1.0;
+  return (principal.maxCoeff() - principal.minCoeff()) / -sum;
+}
+
 }  // namespace
+
+ContinuumStartSpec parse_continuum_start(const CaseNode& node) {
+  ContinuumStartSpec s;
+  s.enabled = node.get_or<bool>("enabled", true);
+  s.strain = node.in_range_or("strain", 1e-7, 0.1, s.strain);
+  s.friction_deg = node.in_range_or("friction_deg", 0.1, 89.0, s.friction_deg);
+  s.max_jump = node.in_range_or("max_jump", 1e-6, 1.0, s.max_jump);
+  return s;
+}
 
 QuietSpec parse_quiet(const CaseNode& node) {
   QuietSpec s;
@@ -71,27 +94,38 @@ QuietSpec parse_quiet(const CaseNode& node) {
 }
 
 void QuietPoints::start(std::size_t points, const QuietSpec& spec, int dimension,
-                        double stress_floor) {
+                        double stress_floor, const ContinuumStartSpec& continuum_start) {
   spec_ = spec;
+  continuum_start_ = continuum_start;
   dimension_ = dimension;
   stress_floor_ = stress_floor;
   pending_.assign(points, Mat3::Identity());
   anchor_.assign(points, Mat3::Zero());
   predicted_.assign(points, Mat3::Zero());
   rows_.assign(points, Row{});
-  for (Row& r : rows_)
+  for (Row& r : rows_) {
     r.tolerance = spec.tolerance;
+    r.continuum = continuum_start.enabled ? 1.0 : 0.0;
+  }
   stats_ = QuietStats{};
 }
 
-void QuietPoints::set_packing(std::size_t point, const Mat3& stress, double wave_modulus) {
+void QuietPoints::set_packing(std::size_t point, const Mat3& stress, double wave_modulus,
+                              double lateral_modulus) {
   anchor_[point] = stress;
   predicted_[point] = stress;
   Row& r = row(point);
   r.wave_modulus = wave_modulus;
-  // M = K + G in plane strain (K the areal bulk modulus), M = K + 4G/3 in 3D.
-  r.shear = dimension_ == 2 ? 0.5 * wave_modulus : 3.0 * wave_modulus / 7.0;
-  r.bulk = r.shear;
+  // M = K + G and L = K - G in plane strain (K the areal bulk modulus); M = K + 4G/3 and
+  // L = K - 2G/3 in 3D.
+  const double shear = 0.5 * (wave_modulus - lateral_modulus);
+  const double bulk = dimension_ == 2 ? wave_modulus - shear : wave_modulus - 4.0 * shear / 3.0;
+  if (shear > 0.0 && bulk > 0.0 && shear <= wave_modulus && bulk <= wave_modulus) {
+    r.shear = shear;
+    r.bulk = bulk;
+  } else {
+    r.shear = r.bulk = 0.5 * wave_modulus;
+  }
 }
 
 Mat3 QuietPoints::predict(const Mat3& anchor, const Mat3& increment, double bulk,
@@ -102,10 +136,26 @@ Mat3 QuietPoints::predict(const Mat3& anchor, const Mat3& increment, double bulk
          spin_of(anchor, increment, d);
 }
 
+bool QuietPoints::passes_switch_threshold(std::size_t point) const {
+  const double scale = stats_.threshold_scale;
+  const double strain = (pending_[point] - Mat3::Identity()).norm();
+  const double sin_limit = scale * std::sin(continuum_start_.friction_deg * M_PI / 180.0);
+  return strain >= scale * continuum_start_.strain ||
+         mobilised_sin_friction(predicted_[point], dimension_) >= sin_limit;
+}
+
 bool QuietPoints::accumulate(std::size_t point, const Mat3& dF) {
   pending_[point] = dF * pending_[point];
   Row& r = row(point);
   predicted_[point] = predict(anchor_[point], pending_[point], r.bulk, r.shear);
+  if (r.continuum != 0.0) {
+    if (passes_switch_threshold(point))
+      return true;
+    stats_.continuum_updates += 1.0;
+    return false;
+  }
+  if (!spec_.enabled)
+    return true;
   const double strain = (pending_[point] - Mat3::Identity()).norm();
   if (strain >= r.tolerance || r.quiet_updates >= spec_.check_every)
     return true;
@@ -114,13 +164,30 @@ bool QuietPoints::accumulate(std::size_t point, const Mat3& dF) {
   return false;
 }
 
+double QuietPoints::relative_error(std::size_t point, const Mat3& stress) const {
+  return (predicted_[point] - stress).norm() / std::max(stress.norm(), stress_floor_);
+}
+
+void QuietPoints::book_switch(std::size_t point, const Mat3& stress) {
+  const double jump = relative_error(point, stress);
+  stats_.switches += 1.0;
+  stats_.jump_sum += jump;
+  stats_.max_jump = std::max(stats_.max_jump, jump);
+  if (jump > continuum_start_.max_jump) {
+    stats_.jumps_exceeded += 1.0;
+    stats_.threshold_scale = std::max(0.5 * stats_.threshold_scale, kSmallestThresholdScale);
+  }
+  row(point).continuum = 0.0;
+}
+
 void QuietPoints::after_dem(std::size_t point, const Mat3& stress) {
   Row& r = row(point);
-  if (r.quiet_updates > 0.0) {
+  if (r.continuum != 0.0) {
+    book_switch(point, stress);
+  } else if (r.quiet_updates > 0.0) {
     // The prediction for this increment, against the DEM's answer: an upper bound of the
     // error of the quiet updates before it, whose increments were smaller.
-    const double scale = std::max(stress.norm(), stress_floor_);
-    const double error = (predicted_[point] - stress).norm() / scale;
+    const double error = relative_error(point, stress);
     stats_.checks += 1.0;
     stats_.error_sum += error;
     stats_.max_error = std::max(stats_.max_error, error);
@@ -166,8 +233,9 @@ void QuietPoints::save_row(std::size_t point, double* v) const {
   std::copy(anchor_[point].data(), anchor_[point].data() + 9, v + 9);
   std::copy(predicted_[point].data(), predicted_[point].data() + 9, v + 18);
   const Row& r = row(point);
-  const double rest[] = {r.bulk, r.shear, r.tolerance, r.quiet_updates, r.wave_modulus};
-  std::copy(rest, rest + 5, v + 27);
+  const double rest[] = {r.bulk,          r.shear,        r.tolerance,
+                         r.quiet_updates, r.wave_modulus, r.continuum};
+  std::copy(rest, rest + 6, v + 27);
 }
 
 void QuietPoints::restore_row(std::size_t point, const double* v) {
@@ -180,16 +248,19 @@ void QuietPoints::restore_row(std::size_t point, const double* v) {
   r.tolerance = v[29];
   r.quiet_updates = v[30];
   r.wave_modulus = v[31];
+  r.continuum = v[32];
 }
 
 void QuietPoints::save_stats(double* v) const {
-  const double values[] = {stats_.predictions, stats_.dem_updates, stats_.checks,
-                           stats_.error_sum,   stats_.max_error,   stats_.exceeded};
+  const double values[] = {stats_.predictions,       stats_.dem_updates,    stats_.checks,
+                           stats_.error_sum,         stats_.max_error,      stats_.exceeded,
+                           stats_.continuum_updates, stats_.switches,       stats_.jump_sum,
+                           stats_.max_jump,          stats_.jumps_exceeded, stats_.threshold_scale};
   std::copy(values, values + kStatValues, v);
 }
 
 void QuietPoints::restore_stats(const double* v) {
-  stats_ = QuietStats{v[0], v[1], v[2], v[3], v[4], v[5]};
+  stats_ = QuietStats{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11]};
 }
 
 }  // namespace mpm_lig::coupling

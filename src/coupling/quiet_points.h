@@ -18,6 +18,18 @@ struct QuietSpec {
 
 QuietSpec parse_quiet(const CaseNode& node);
 
+//! Case node "start_as_continuum" of a dem_rve material (absent: off, every point is DEM from
+//! the start). A point starts as its packing's elastic continuum and switches to its own RVE
+//! for good once either threshold is passed.
+struct ContinuumStartSpec {
+  bool enabled = false;
+  double strain = 1e-3;        //!< |F - 1| since the start that switches a point to DEM
+  double friction_deg = 15.0;  //!< mobilised friction angle that switches a point to DEM
+  double max_jump = 0.05;      //!< stress jump at a switch (relative to |σ|) that is too large
+};
+
+ContinuumStartSpec parse_continuum_start(const CaseNode& node);
+
 //! What the checks of the predictions measured over the run.
 struct QuietStats {
   double predictions = 0.0;  //!< point-updates whose stress was predicted (no DEM)
@@ -26,6 +38,12 @@ struct QuietStats {
   double error_sum = 0.0;    //!< sum of the checked predictions' relative errors
   double max_error = 0.0;    //!< largest checked relative error
   double exceeded = 0.0;     //!< checks above max_error (each tightened that point's tolerance)
+  double continuum_updates = 0.0;  //!< point-updates of points not yet switched to DEM
+  double switches = 0.0;           //!< points switched from the continuum to their RVE
+  double jump_sum = 0.0;           //!< sum of the relative stress jumps at the switches
+  double max_jump = 0.0;           //!< largest relative stress jump at a switch
+  double jumps_exceeded = 0.0;     //!< switches above max_jump (each halved the thresholds)
+  double threshold_scale = 1.0;    //!< the switch thresholds' factor (halved by such a jump)
 };
 
 //! Quiet points: a point whose deformation since its last DEM update is below a tolerance gets
@@ -36,23 +54,39 @@ struct QuietStats {
 //! update that follows a prediction compares the two; an error above `max_error` halves the
 //! point's tolerance, an error below a quarter of it doubles it back towards the case's.
 //!
+//! With a continuum start, a point is first a quiet point that never runs DEM: its stress is
+//! the prediction from its packing's moduli until |F - 1| or its mobilised friction passes a
+//! threshold; its RVE (the packing it was cloned from, untouched until then) then catches up
+//! with the whole accumulated deformation in one DEM update, and the difference between the
+//! two stresses is the jump the switch makes. A jump above `max_jump` halves the thresholds of
+//! the points still continuum (down to 1/64). After the switch the point is DEM, quiet or not.
+//!
 //! All state is replicated on every rank and updated from replicated data only (the MPM
 //! increments and the gathered stresses): every rank takes the same decisions, whatever the
 //! rank count. docs/DESIGN.md §8.
 class QuietPoints {
  public:
   //! Per-point values in a checkpoint row: pending (9), anchor stress (9), predicted (9),
-  //! bulk, shear, tolerance, quiet updates in a row, wave modulus.
-  static constexpr int kValues = 32;
+  //! bulk, shear, tolerance, quiet updates in a row, wave modulus, still continuum (1 or 0).
+  static constexpr int kValues = 33;
 
   //! `points` points of a `dimension`-D packing; `stress_floor` [Pa] keeps relative errors of
   //! points near zero stress finite.
-  void start(std::size_t points, const QuietSpec& spec, int dimension, double stress_floor);
-  bool enabled() const { return spec_.enabled; }
-  //! `point` before any update: its packing's stress and constrained (P-wave) modulus M. The
-  //! moduli start at the isotropic pair with that M and equal bulk and shear moduli; a
-  //! secant measured later is bounded by M (a larger one is the noise of a small increment).
-  void set_packing(std::size_t point, const Mat3& stress, double wave_modulus);
+  void start(std::size_t points, const QuietSpec& spec, int dimension, double stress_floor,
+             const ContinuumStartSpec& continuum_start = ContinuumStartSpec{});
+  //! Whether any point's stress may be predicted (quiet points or a continuum start).
+  bool enabled() const { return spec_.enabled || continuum_start_.enabled; }
+  bool quiet_enabled() const { return spec_.enabled; }
+  bool continuum_start_enabled() const { return continuum_start_.enabled; }
+  //! Whether `point` is still its packing's continuum (never ran DEM).
+  bool is_continuum(std::size_t point) const { return row(point).continuum != 0.0; }
+  //! `point` before any update: its packing's stress, constrained (P-wave) modulus M and
+  //! lateral modulus L (Δσ_yy / ε_xx under uniaxial strain). The moduli start at the isotropic
+  //! pair these give, G = (M - L) / 2 and K = M - G (2D) or M - 4G/3 (3D), or K = G = M / 2
+  //! if that pair is not a stiffness; a secant measured later is bounded by M (a larger one
+  //! is the noise of a small increment).
+  void set_packing(std::size_t point, const Mat3& stress, double wave_modulus,
+                   double lateral_modulus);
 
   //! Books the MPM increment `dF` of `point`; true when it must run DEM now (with
   //! pending(point) as its increment), false when its stress is predicted (predicted(point)).
@@ -72,7 +106,7 @@ class QuietPoints {
   //! Checkpoint: `values` gets kValues per point; the run statistics separately.
   void save_row(std::size_t point, double* values) const;
   void restore_row(std::size_t point, const double* values);
-  static constexpr int kStatValues = 6;
+  static constexpr int kStatValues = 12;
   void save_stats(double* values) const;
   void restore_stats(const double* values);
 
@@ -82,12 +116,19 @@ class QuietPoints {
     double tolerance = 0.0;
     double quiet_updates = 0.0;  //!< predicted updates since the last DEM update
     double wave_modulus = 0.0;   //!< the packing's M: the largest modulus accepted
+    double continuum = 0.0;      //!< 1 until the point switches to DEM (continuum start)
   };
   Row& row(std::size_t point) { return rows_[point]; }
   const Row& row(std::size_t point) const { return rows_[point]; }
   void measure_moduli(std::size_t point, const Mat3& stress);
+  //! Whether a continuum point has passed a switch threshold under its pending increment.
+  bool passes_switch_threshold(std::size_t point) const;
+  void book_switch(std::size_t point, const Mat3& stress);
+  //! |predicted - stress| / |stress| (the stress floor keeps it finite near zero stress).
+  double relative_error(std::size_t point, const Mat3& stress) const;
 
   QuietSpec spec_;
+  ContinuumStartSpec continuum_start_;
   int dimension_ = 2;
   double stress_floor_ = 1.0;
   std::vector<Mat3> pending_;    //!< increment since the last DEM update

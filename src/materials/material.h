@@ -35,6 +35,19 @@ struct PredictionCost {
   double exceeded = 0.0;  //!< checks above the material's error bound
 };
 
+//! Points that started as their packing's continuum and switched to DEM past a threshold,
+//! and the stress jumps the switches made.
+struct ContinuumStartCost {
+  bool enabled = false;
+  double continuum_updates = 0.0;  //!< point-updates before the points' switches
+  double switches = 0.0;           //!< points switched to DEM
+  double jump_sum = 0.0;           //!< of the relative stress jumps at the switches
+  double max_jump = 0.0;
+  double jumps_exceeded = 0.0;   //!< switches above the material's jump bound
+  double threshold_scale = 1.0;  //!< the smallest factor the thresholds were halved to
+  double points = 0.0;           //!< points of the materials with a continuum start
+};
+
 //! Cost counters of a material whose points run simulations of their own (DEM RVEs). The
 //! same on every rank except the times, which are this rank's.
 struct MaterialCost {
@@ -47,6 +60,7 @@ struct MaterialCost {
   double particle_steps_low_stress = 0.0;  //!< in packings below 10 % of the preparation p
   double particle_steps_quiet = 0.0;       //!< in updates with |dF - 1| < 1e-5
   PredictionCost quiet;
+  ContinuumStartCost continuum_start;
 };
 
 //! The constitutive side of a material point, seen by the MPM solver.

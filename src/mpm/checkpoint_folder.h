@@ -21,7 +21,9 @@ struct CheckpointFolder {
   //! Layout of a checkpoint, kept in mpm.h5 ("format"; absent = 1). 2: a DEM point keeps its
   //! grains' exact placement beside its engine restart (point_<i>.restart.placement). 3: and
   //! its quiet-point state (the point field quiet_points, and the quiet_* run statistics).
-  static constexpr int kFormat = 3;
+  //! 4: and whether it is still its packing's continuum (a 33rd quiet_points value, and the
+  //! continuum_* run statistics).
+  static constexpr int kFormat = 4;
 
   //! `run_dir/checkpoints`.
   static std::string root(const std::string& run_dir);

@@ -114,6 +114,18 @@ materials::MaterialCost total_cost(const MaterialSet& materials) {
       total.quiet.max_error = std::max(total.quiet.max_error, c.quiet.max_error);
       total.quiet.exceeded += c.quiet.exceeded;
     }
+    if (c.continuum_start.enabled) {
+      materials::ContinuumStartCost& t = total.continuum_start;
+      t.threshold_scale = t.enabled ? std::min(t.threshold_scale, c.continuum_start.threshold_scale)
+                                    : c.continuum_start.threshold_scale;
+      t.enabled = true;
+      t.continuum_updates += c.continuum_start.continuum_updates;
+      t.switches += c.continuum_start.switches;
+      t.jump_sum += c.continuum_start.jump_sum;
+      t.max_jump = std::max(t.max_jump, c.continuum_start.max_jump);
+      t.jumps_exceeded += c.continuum_start.jumps_exceeded;
+      t.points += static_cast<double>(c.simulations);
+    }
   }
   return total;
 }
@@ -309,6 +321,16 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
         {"mean_error", q.checks > 0.0 ? q.error_sum / q.checks : 0.0},
         {"max_error", q.max_error},
         {"checks_above_max_error", q.exceeded}};
+  }
+  if (cost.continuum_start.enabled) {
+    const materials::ContinuumStartCost& c = cost.continuum_start;
+    s["start_as_continuum"] = {{"continuum_updates", c.continuum_updates},
+                               {"switched_points", c.switches},
+                               {"continuum_points", c.points - c.switches},
+                               {"mean_jump", c.switches > 0.0 ? c.jump_sum / c.switches : 0.0},
+                               {"max_jump", c.max_jump},
+                               {"jumps_above_max_jump", c.jumps_exceeded},
+                               {"threshold_scale", c.threshold_scale}};
   }
   s["mpm_steps"] = solver.steps();
   s["gravity_stage_steps"] = totals.gravity_stage_steps;

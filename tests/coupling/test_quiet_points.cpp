@@ -82,7 +82,7 @@ TEST(QuietPoints, PredictionRotatesTheStressToFirstOrder) {
 TEST(QuietPoints, LinearSoilIsPredictedAsIfUpdatedEveryStep) {
   QuietPoints q;
   q.start(1, spec(1e-4, 0.02, 50), 2, 1e3);
-  q.set_packing(0, anchor(), kWaveModulus);
+  q.set_packing(0, anchor(), kWaveModulus, 0.0);
   Mat3 every_step = anchor(), total = Mat3::Identity(), dem_anchor = anchor();
   int predicted = 0;
   bool measured = false;
@@ -111,7 +111,7 @@ TEST(QuietPoints, LinearSoilIsPredictedAsIfUpdatedEveryStep) {
 TEST(QuietPoints, ViolatedBoundIsDetectedAndTightensTheTolerance) {
   QuietPoints q;
   q.start(1, spec(1e-4, 0.002, 50), 2, 1e3);
-  q.set_packing(0, anchor(), 10 * kWaveModulus);
+  q.set_packing(0, anchor(), 10 * kWaveModulus, 0.0);
   Mat3 dem_anchor = anchor();
   int dem_updates = 0;
   double tightest = 1.0;
@@ -134,7 +134,7 @@ TEST(QuietPoints, ViolatedBoundIsDetectedAndTightensTheTolerance) {
 TEST(QuietPoints, CheckEveryForcesADemUpdate) {
   QuietPoints q;
   q.start(1, spec(1e-4, 0.02, 3), 2, 1e3);
-  q.set_packing(0, anchor(), kWaveModulus);
+  q.set_packing(0, anchor(), kWaveModulus, 0.0);
   const bool expected[] = {false, false, false, true, false};
   for (const bool must_run : expected) {
     const bool runs = q.accumulate(0, step(1e-9));
@@ -147,7 +147,7 @@ TEST(QuietPoints, CheckEveryForcesADemUpdate) {
 TEST(QuietPoints, SecantStifferThanThePackingIsNotTaken) {
   QuietPoints q;
   q.start(1, spec(1e-4, 0.02, 50), 2, 1e3);
-  q.set_packing(0, anchor(), kWaveModulus);
+  q.set_packing(0, anchor(), kWaveModulus, 0.0);
   const Mat3 dF = step(1e-4);
   ASSERT_TRUE(q.accumulate(0, dF));
   q.after_dem(0, linear_soil(anchor(), dF, 100 * kBulk, 100 * kShear));  // noise, not a modulus
@@ -160,11 +160,28 @@ TEST(QuietPoints, SecantStifferThanThePackingIsNotTaken) {
       1e-9 * start.norm());
 }
 
+// The probe's uniaxial pair (M = K + G, L = K - G in plane strain) gives the starting moduli: a
+// linear soil with K and G is predicted from its packing alone; an L that gives no stiffness
+// (G <= 0) falls back to K = G = M / 2.
+TEST(QuietPoints, PackingProbeGivesTheStartingModuli) {
+  QuietPoints q;
+  q.start(2, spec(1e-4, 0.02, 50), 2, 1e3);
+  q.set_packing(0, anchor(), kBulk + kShear, kBulk - kShear);
+  q.set_packing(1, anchor(), kWaveModulus, 2.0 * kWaveModulus);
+  const Mat3 dF = step(5e-5);
+  ASSERT_FALSE(q.accumulate(0, dF));
+  ASSERT_FALSE(q.accumulate(1, dF));
+  const Mat3 soil = linear_soil(anchor(), dF, kBulk, kShear);
+  EXPECT_LT((q.predicted(0) - soil).norm(), 1e-9 * soil.norm());
+  const Mat3 fallback = linear_soil(anchor(), dF, 0.5 * kWaveModulus, 0.5 * kWaveModulus);
+  EXPECT_LT((q.predicted(1) - fallback).norm(), 1e-9 * fallback.norm());
+}
+
 TEST(QuietPoints, CheckpointRowContinuesIdentically) {
   QuietPoints a, b;
   a.start(1, spec(1e-4, 0.02, 50), 2, 1e3);
   b.start(1, spec(1e-4, 0.02, 50), 2, 1e3);
-  a.set_packing(0, anchor(), kWaveModulus);
+  a.set_packing(0, anchor(), kWaveModulus, 0.0);
   auto drive = [](QuietPoints& q, int k) {
     const Mat3 dF = step(1e-5 * (1 + k % 3));
     if (q.accumulate(0, dF))
@@ -186,6 +203,130 @@ TEST(QuietPoints, CheckpointRowContinuesIdentically) {
   EXPECT_EQ(a.stats().predictions, b.stats().predictions);
   EXPECT_EQ(a.stats().max_error, b.stats().max_error);
   EXPECT_EQ(a.tolerance(0), b.tolerance(0));
+}
+
+ContinuumStartSpec continuum_start(double strain, double friction_deg, double max_jump) {
+  ContinuumStartSpec s;
+  s.enabled = true;
+  s.strain = strain;
+  s.friction_deg = friction_deg;
+  s.max_jump = max_jump;
+  return s;
+}
+
+QuietSpec quiet_off() {
+  return QuietSpec{};
+}
+
+// A packing whose response is the continuum's own (K = G = M / 2): the point is continuum until
+// |F - 1| passes the threshold, switches at that update, and the DEM's stress after catching up
+// with the whole increment is the continuum's (no jump). Quiet points off: DEM every step after.
+TEST(ContinuumStart, SwitchesAtTheStrainThresholdWithoutAJump) {
+  QuietPoints q;
+  q.start(1, quiet_off(), 2, 1e3, continuum_start(1e-3, 89.0, 0.05));
+  q.set_packing(0, anchor(), kWaveModulus, 0.0);
+  const double half = 0.5 * kWaveModulus;
+  Mat3 total = Mat3::Identity();
+  int switched_at = -1;
+  for (int k = 0; k < 30; ++k) {
+    const Mat3 dF = step(1e-4);
+    total = dF * total;
+    const bool runs = q.accumulate(0, dF);
+    if (switched_at < 0 && !runs) {
+      EXPECT_TRUE(q.is_continuum(0));
+      EXPECT_LT((total - Mat3::Identity()).norm(), 1e-3) << "update " << k;
+      continue;
+    }
+    ASSERT_TRUE(runs) << "update " << k << ": after the switch every update runs DEM";
+    if (switched_at < 0) {
+      switched_at = k;
+      EXPECT_GE((total - Mat3::Identity()).norm(), 1e-3);
+      EXPECT_LT((q.pending(0) - total).norm(), 1e-15);
+    }
+    q.after_dem(0, linear_soil(anchor(), total, half, half));
+    EXPECT_FALSE(q.is_continuum(0));
+  }
+  EXPECT_GT(switched_at, 3);
+  EXPECT_EQ(q.stats().switches, 1.0);
+  EXPECT_EQ(q.stats().continuum_updates, static_cast<double>(switched_at));
+  EXPECT_LT(q.stats().max_jump, 1e-6);  // second order in the strain
+  EXPECT_EQ(q.stats().predictions, 0.0);
+}
+
+// Pure shear from an isotropic stress: the mobilised friction passes 5 degrees long before the
+// strain threshold; the point switches at the first update whose predicted stress passes it.
+TEST(ContinuumStart, SwitchesAtTheFrictionThreshold) {
+  QuietPoints q;
+  q.start(1, quiet_off(), 2, 1e3, continuum_start(0.05, 5.0, 0.05));
+  const Mat3 isotropic = -1e5 * Mat3::Identity();
+  q.set_packing(0, isotropic, kWaveModulus, 0.0);
+  Mat3 shear = Mat3::Identity();
+  shear(0, 0) += 2e-5;
+  shear(1, 1) -= 2e-5;
+  const double shear_modulus = 0.5 * kWaveModulus;
+  int updates = 0;
+  while (!q.accumulate(0, shear))
+    ++updates;
+  // sin φ = 2G |ε_xx - ε_yy| / 2 / p = 2 G n 2e-5 / p passes sin 5° at update n.
+  const double expected =
+      std::ceil(std::sin(5.0 * M_PI / 180.0) * 1e5 / (2 * shear_modulus * 2e-5));
+  EXPECT_NEAR(updates + 1, expected, 1.0);
+  EXPECT_LT((q.pending(0) - Mat3::Identity()).norm(), 0.05);
+}
+
+// A packing three times stiffer than the continuum: the first switch jumps by more than the
+// bound, is counted, and halves the thresholds of the points still continuum; the second point
+// then switches at half the strain.
+TEST(ContinuumStart, JumpAboveTheBoundIsCountedAndHalvesTheThresholds) {
+  QuietPoints q;
+  q.start(2, quiet_off(), 2, 1e3, continuum_start(1e-3, 89.0, 0.01));
+  q.set_packing(0, anchor(), kWaveModulus, 0.0);
+  q.set_packing(1, anchor(), kWaveModulus, 0.0);
+  const double stiff = 1.5 * kWaveModulus;
+  Mat3 total = Mat3::Identity();
+  int first = -1;
+  for (int k = 0; k < 12 && first < 0; ++k) {
+    total = step(1e-4) * total;
+    if (q.accumulate(0, step(1e-4))) {
+      first = k;
+      q.after_dem(0, linear_soil(anchor(), total, stiff, stiff));
+    }
+  }
+  ASSERT_GE(first, 0);
+  EXPECT_EQ(q.stats().jumps_exceeded, 1.0);
+  EXPECT_GT(q.stats().max_jump, 0.01);
+  EXPECT_EQ(q.stats().threshold_scale, 0.5);
+  int second = -1;
+  for (int k = 0; k < 12 && second < 0; ++k)
+    if (q.accumulate(1, step(1e-4)))
+      second = k;
+  EXPECT_LT(second, first);
+  EXPECT_TRUE(q.is_continuum(1));  // until its DEM update is booked
+}
+
+TEST(ContinuumStart, CheckpointRowKeepsWhetherAPointSwitched) {
+  QuietPoints a, b;
+  a.start(2, quiet_off(), 2, 1e3, continuum_start(1e-3, 89.0, 0.05));
+  b.start(2, quiet_off(), 2, 1e3, continuum_start(1e-3, 89.0, 0.05));
+  for (std::size_t p = 0; p < 2; ++p)
+    a.set_packing(p, anchor(), kWaveModulus, 0.0);
+  for (int k = 0; k < 12; ++k)
+    if (a.accumulate(0, step(1e-4)))
+      a.after_dem(0, a.predicted(0));
+  a.accumulate(1, step(1e-4));
+  double row[QuietPoints::kValues], stats[QuietPoints::kStatValues];
+  for (std::size_t p = 0; p < 2; ++p) {
+    a.save_row(p, row);
+    b.restore_row(p, row);
+  }
+  a.save_stats(stats);
+  b.restore_stats(stats);
+  EXPECT_FALSE(b.is_continuum(0));
+  EXPECT_TRUE(b.is_continuum(1));
+  EXPECT_EQ(b.stats().switches, 1.0);
+  EXPECT_EQ(b.stats().continuum_updates, a.stats().continuum_updates);
+  EXPECT_EQ(a.accumulate(1, step(1e-4)), b.accumulate(1, step(1e-4)));
+  EXPECT_EQ((a.predicted(1) - b.predicted(1)).norm(), 0.0);
 }
 
 }  // namespace
