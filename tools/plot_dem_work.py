@@ -3,12 +3,17 @@
 points (the cost map), with the breakdown of summary.json.
 
 usage: plot_dem_work.py OUTPUT_DIR [-o picture.png] [--step N] [--initial]
+                        [--below-strain E [E ...]]
 
 Reads the dem_particle_steps_m<ID> fields of OUTPUT_DIR/results.h5 at the last output step (or
 --step N) and the points' positions there (--initial: at the first output step, the undeformed
 layout). Prints the share of the work taken by the most expensive 1, 5, 10 and 25 % of the
 points and summary.json's dem_work_shares (work at substeps.max, in packings below 10 % of the
-preparation pressure, in updates with strain per step below 1e-5).
+preparation pressure, in updates with strain per step below 1e-5). --below-strain E...: for
+each E, the share of the work the points did while their logarithmic strain |ε| was still
+below E (at the output steps' resolution: up to the last output step before they passed it) —
+the most a continuum start (materials[].start_as_continuum) with strain threshold E could have
+saved on this run.
 """
 import os
 
@@ -32,6 +37,29 @@ def point_work(fields, step):
     return sum(s[n] for n in names), s.time
 
 
+def strain_norm(voigt):
+    """|ε| of tensors given as Voigt rows (xx yy zz xy xz yz, tensor shear components)."""
+    v = np.asarray(voigt, dtype=float)
+    return np.sqrt((v[:, :3] ** 2).sum(axis=1) + 2.0 * (v[:, 3:] ** 2).sum(axis=1))
+
+
+def work_below_strain(fields, thresholds, last_step):
+    """[(E, share of the work done by the points while |ε| < E)] over the output steps up to
+    last_step; a point's work counts up to the last output step at which it was below E."""
+    steps = [s for s in fields.steps if s <= last_step]
+    total, _ = point_work(fields, steps[-1])
+    out = []
+    for threshold in thresholds:
+        saved = np.zeros_like(total)
+        below = np.ones(len(total), dtype=bool)
+        for step in steps:
+            work, _ = point_work(fields, step)
+            below &= strain_norm(fields.step(step)["strain"]) < threshold
+            saved[below] = work[below]
+        out.append((threshold, saved.sum() / total.sum() if total.sum() > 0 else 0.0))
+    return out
+
+
 def top_shares(work, fractions=(0.01, 0.05, 0.10, 0.25)):
     """[(fraction of points, share of the work they took)] for the most expensive points."""
     order = np.sort(work)[::-1]
@@ -48,6 +76,8 @@ def main():
     p.add_argument("--step", type=int, help="output step (default: the last)")
     p.add_argument("--initial", action="store_true",
                    help="draw the points where they started (first output step)")
+    p.add_argument("--below-strain", type=float, nargs="+", default=[], metavar="E",
+                   help="print the work done while each point's |strain| was below E")
     args = p.parse_args()
     directory = cli.output_dir(args)
     fields = FieldFile(os.path.join(directory, "results.h5"))
@@ -55,6 +85,7 @@ def main():
         step = args.step if args.step is not None else fields.steps[-1]
         work, time = point_work(fields, step)
         where = fields.step(fields.steps[0] if args.initial else step)["positions"]
+        below = work_below_strain(fields, args.below_strain, step) if args.below_strain else []
     finally:
         fields.close()
     total = work.sum()
@@ -67,6 +98,9 @@ def main():
     if shares:
         for key, value in shares.items():
             print(f"  {key.replace('_', ' ')}: {100 * value:.1f} % of the work")
+    for threshold, share in below:
+        print(f"  done while the point's |strain| < {threshold:g}: {100 * share:.1f} % of the work "
+              "(the most a continuum start with that threshold saves)")
     fig, ax = figures.subplots(figsize=(6.4, 5.2))  # imports matplotlib
     positive = work > 0
     vmin = work[positive].min() if positive.any() else 1.0

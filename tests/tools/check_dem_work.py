@@ -1,13 +1,15 @@
 """Checks of the per-point DEM work (results.h5 dem_particle_steps_m<ID>, summary.json
 dem_work_shares) and of tools/plot_dem_work.py.
 
-usage: check_dem_work.py CASE WORK_DIR [MPM_LIG]   (CASE: real | bad)
+usage: check_dem_work.py CASE WORK_DIR [MPM_LIG]   (CASE: real | bad | below)
 
 real: the quick-start block with 50-disc RVEs for 10 steps at exactly 10 sub-steps: every
 point's field is 40 x 10 x 10 particle-steps and the fields sum to the summary's total; with the
 sub-steps capped at 10 all the work is at substeps.max, with "fixed": 10 none of it is (no cap);
 the block, compressed at 0.3 m/s and confined at the preparation pressure, does no work at low
 mean stress nor quiet. (The classes' closed forms: tests/coupling/test_dem_work.cpp.)
+below: --below-strain on three synthetic points whose strain passes 1e-4 at known output steps
+(one of them by shear alone): the work done before is 50 % of the total, all of it below 1e-3.
 """
 import json
 import math
@@ -88,7 +90,35 @@ def bad(work):
     expect(r.returncode == 2 and "nowhere" in r.stderr, f"no folder: {r.stderr}")
 
 
+def below(work):
+    sys.path.insert(0, HERE)
+    from synthetic import write_fields
+    shutil.rmtree(work, ignore_errors=True)
+
+    def voigt(*rows):
+        return np.array(rows, dtype=float)
+
+    positions = np.zeros((3, 3))
+    shear = 1.2e-4 / math.sqrt(2.0)  # |ε| = 1.2e-4 from xy alone (0.85e-4 without the 2)
+    steps = [
+        (0, 0.0, {"positions": positions, "dem_particle_steps_m1": np.zeros(3),
+                  "strain": np.zeros((3, 6))}),
+        (10, 1.0, {"positions": positions, "dem_particle_steps_m1": np.array([10.0, 20.0, 30.0]),
+                   "strain": voigt([5e-5, 0, 0, 0, 0, 0], [0, 0, 0, shear, 0, 0],
+                                   [0, -5e-5, 0, 0, 0, 0])}),
+        (20, 2.0, {"positions": positions, "dem_particle_steps_m1": np.array([30.0, 40.0, 50.0]),
+                   "strain": voigt([2e-4, 0, 0, 0, 0, 0], [3e-4, 0, 0, 0, 0, 0],
+                                   [0, -5e-5, 0, 0, 0, 0])}),
+    ]
+    write_fields(work, steps)
+    r = subprocess.run([sys.executable, TOOL, work, "-o", os.path.join(work, "map.png"),
+                        "--below-strain", "1e-4", "1e-3"], capture_output=True, text=True)
+    expect(r.returncode == 0, f"plot_dem_work exit {r.returncode}: {r.stderr}")
+    expect("|strain| < 0.0001: 50.0 % of the work" in r.stdout, r.stdout)
+    expect("|strain| < 0.001: 100.0 % of the work" in r.stdout, r.stdout)
+
+
 if __name__ == "__main__":
     case, work = sys.argv[1], os.path.join(sys.argv[2], sys.argv[1])
-    {"real": real, "bad": bad}[case](work, *sys.argv[3:])
+    {"real": real, "bad": bad, "below": below}[case](work, *sys.argv[3:])
     print(f"{case}: ok")
