@@ -124,7 +124,8 @@ void QuietPoints::set_packing(std::size_t point, const Mat3& stress, double wave
     r.shear = shear;
     r.bulk = bulk;
   } else {
-    r.shear = r.bulk = 0.5 * wave_modulus;
+    // Equal bulk and shear moduli with that M.
+    r.shear = r.bulk = dimension_ == 2 ? 0.5 * wave_modulus : 3.0 * wave_modulus / 7.0;
   }
 }
 

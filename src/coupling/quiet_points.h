@@ -82,9 +82,9 @@ class QuietPoints {
   bool is_continuum(std::size_t point) const { return row(point).continuum != 0.0; }
   //! `point` before any update: its packing's stress, constrained (P-wave) modulus M and
   //! lateral modulus L (Δσ_yy / ε_xx under uniaxial strain). The moduli start at the isotropic
-  //! pair these give, G = (M - L) / 2 and K = M - G (2D) or M - 4G/3 (3D), or K = G = M / 2
-  //! if that pair is not a stiffness; a secant measured later is bounded by M (a larger one
-  //! is the noise of a small increment).
+  //! pair these give, G = (M - L) / 2 and K = M - G (2D) or M - 4G/3 (3D), or equal K and G
+  //! with that M if that pair is not a stiffness; a secant measured later is bounded by M (a larger
+  //! one is the noise of a small increment).
   void set_packing(std::size_t point, const Mat3& stress, double wave_modulus,
                    double lateral_modulus);
 
