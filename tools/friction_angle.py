@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """Macroscopic friction angle from drained biaxial/triaxial element tests.
 
-usage: friction_angle.py RUN_DIR RUN_DIR [...] [--json OUT.json]
+usage: friction_angle.py RUN_DIR RUN_DIR [...] [--residual A B] [--json OUT.json]
 
 Each RUN_DIR holds history.csv and summary.json of one mpm_lig element test. For every run the
 peak state is the row of largest stress ratio (σ1 − σ3)/(σ1 + σ3) (principal stresses,
 compression positive; in-plane for 2D runs). A straight line through the peak states in the
 plane s = (σ1 + σ3)/2, t = (σ1 − σ3)/2 (Mohr–Coulomb: t = s sin φ' + c' cos φ') gives φ' and c'.
 With runs at two or more confining pressures the fit separates friction from cohesion; the
-per-run mobilised angles are printed too.
+per-run mobilised angles are printed too. --residual A B adds each run's residual angle: the
+mean mobilised angle over the rows whose axial strain (the most compressive of e_xx, e_yy,
+e_zz, positive in compression) lies in [A, B], and the mean over the runs (for a softening soil, e.g. 0.10 0.15).
 """
 import argparse
 import json
@@ -39,9 +41,28 @@ def peak_state(run_dir):
     return summary, best
 
 
+def residual_angle(run_dir, low, high):
+    """Mean mobilised friction angle [deg] over the rows with axial strain in [low, high]."""
+    summary = read_json(f"{run_dir}/summary.json")
+    history_path = f"{run_dir}/history.csv"
+    table = read_history(history_path)
+    require_columns(table, STRESS_COLUMNS + ("e_xx", "e_yy", "e_zz"), history_path)
+    s1, s3 = principal_stresses(table, summary["dimension"])
+    # Strains are tension positive; a dilating sample's lateral strain may exceed the axial one.
+    axial = -np.min([table["e_xx"], table["e_yy"], table["e_zz"]], axis=0)
+    rows = (axial >= low) & (axial <= high) & (s1 + s3 > 0)
+    if not rows.any():
+        raise InputError(f"{history_path}: no row with axial strain in [{low:g}, {high:g}] "
+                         f"(largest {axial.max():.4g})")
+    ratio = (s1[rows] - s3[rows]) / (s1[rows] + s3[rows])
+    return float(np.degrees(np.arcsin(np.clip(ratio, -1.0, 1.0))).mean())
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
     parser.add_argument("runs", nargs="+")
+    parser.add_argument("--residual", nargs=2, type=float, metavar=("A", "B"),
+                        help="also the mean mobilised angle over axial strains in [A, B]")
     parser.add_argument("--json", help="write the result here")
     args = parser.parse_args()
     s_points, t_points, rows = [], [], []
@@ -52,11 +73,20 @@ def main():
         t_points.append(t)
         rows.append({"run": run, "test": summary.get("test"), "sigma1": s1, "sigma3": s3,
                      "mobilised_friction_deg": math.degrees(math.asin(ratio))})
-    print(f"{'run':40s} {'sigma3 [kPa]':>12s} {'sigma1 [kPa]':>12s} {'phi_mob [deg]':>13s}")
+        if args.residual:
+            rows[-1]["residual_friction_deg"] = residual_angle(run, *args.residual)
+    extra = f" {'phi_res [deg]':>13s}" if args.residual else ""
+    print(f"{'run':40s} {'sigma3 [kPa]':>12s} {'sigma1 [kPa]':>12s} {'phi_mob [deg]':>13s}{extra}")
     for r in rows:
+        extra = f" {r['residual_friction_deg']:13.2f}" if args.residual else ""
         print(f"{r['run']:40s} {r['sigma3']/1e3:12.1f} {r['sigma1']/1e3:12.1f} "
-              f"{r['mobilised_friction_deg']:13.2f}")
+              f"{r['mobilised_friction_deg']:13.2f}{extra}")
     result = {"runs": rows}
+    if args.residual:
+        mean = sum(r["residual_friction_deg"] for r in rows) / len(rows)
+        result["residual_friction_deg"] = mean
+        print(f"residual angle over axial strain {args.residual[0]:g}-{args.residual[1]:g}, mean of "
+              f"{len(rows)} runs: {mean:.2f} deg")
     spread = (max(s_points) - min(s_points)) / (sum(s_points) / len(s_points))
     if len(rows) >= 2 and spread < 0.2:
         print("the runs' mean stresses at peak differ by less than 20 %: no fit (give runs at "
