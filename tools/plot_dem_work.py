@@ -12,8 +12,9 @@ points and summary.json's dem_work_shares (work at substeps.max, in packings bel
 preparation pressure, in updates with strain per step below 1e-5). --below-strain E...: for
 each E, the share of the work the points did while their logarithmic strain |ε| was still
 below E (at the output steps' resolution: up to the last output step before they passed it) —
-the most a continuum start (materials[].start_as_continuum) with strain threshold E could have
-saved on this run.
+an upper bound of what a continuum start (materials[].start_as_continuum) with strain
+threshold E could have saved on this run (a point that switches later redoes that strain in
+its catch-up: only points that never pass E save their work).
 """
 import os
 
@@ -100,7 +101,7 @@ def main():
             print(f"  {key.replace('_', ' ')}: {100 * value:.1f} % of the work")
     for threshold, share in below:
         print(f"  done while the point's |strain| < {threshold:g}: {100 * share:.1f} % of the work "
-              "(the most a continuum start with that threshold saves)")
+              "(bounds what a continuum start with that threshold saves)")
     fig, ax = figures.subplots(figsize=(6.4, 5.2))  # imports matplotlib
     positive = work > 0
     vmin = work[positive].min() if positive.any() else 1.0

@@ -62,13 +62,22 @@ Mat3 spin_of(const Mat3& stress, const Mat3& increment, int d) {
 //! sin of the mobilised friction angle, (σ1 - σ3) / -(σ1 + σ3), of the principal stresses in
 //! the first `d` axes (tension positive); 1 when the stress is not compressive.
 double mobilised_sin_friction(const Mat3& stress, int d) {
-  const Eigen::MatrixXd plane = 0.5 * (stress + stress.transpose()).topLeftCorner(d, d);
-  const Eigen::VectorXd principal =
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(plane, Eigen::EigenvaluesOnly).eigenvalues();
-  const double sum = principal.minCoeff() + principal.maxCoeff();
-  if (!(sum < 0.0))
+  const Mat3 sym = 0.5 * (stress + stress.transpose());
+  double low = 0.0, high = 0.0;
+  if (d == 2) {
+    const double centre = 0.5 * (sym(0, 0) + sym(1, 1));
+    const double radius = std::hypot(0.5 * (sym(0, 0) - sym(1, 1)), sym(0, 1));
+    low = centre - radius;
+    high = centre + radius;
+  } else {
+    const Vec3 principal =
+        Eigen::SelfAdjointEigenSolver<Mat3>(sym, Eigen::EigenvaluesOnly).eigenvalues();
+    low = principal.minCoeff();
+    high = principal.maxCoeff();
+  }
+  if (!(low + high < 0.0))
     return 1.0;
-  return (principal.maxCoeff() - principal.minCoeff()) / -sum;
+  return (high - low) / -(low + high);
 }
 
 }  // namespace
@@ -140,7 +149,7 @@ Mat3 QuietPoints::predict(const Mat3& anchor, const Mat3& increment, double bulk
 bool QuietPoints::passes_switch_threshold(std::size_t point) const {
   const double scale = stats_.threshold_scale;
   const double strain = (pending_[point] - Mat3::Identity()).norm();
-  const double sin_limit = scale * std::sin(continuum_start_.friction_deg * M_PI / 180.0);
+  const double sin_limit = scale * std::sin(continuum_start_.friction_deg * kPi / 180.0);
   return strain >= scale * continuum_start_.strain ||
          mobilised_sin_friction(predicted_[point], dimension_) >= sin_limit;
 }

@@ -23,8 +23,8 @@ QuietSpec parse_quiet(const CaseNode& node);
 //! for good once either threshold is passed.
 struct ContinuumStartSpec {
   bool enabled = false;
-  double strain = 1e-3;        //!< |F - 1| since the start that switches a point to DEM
-  double friction_deg = 15.0;  //!< mobilised friction angle that switches a point to DEM
+  double strain = 1e-4;        //!< |F - 1| since the start that switches a point to DEM
+  double friction_deg = 10.0;  //!< mobilised friction angle that switches a point to DEM
   double max_jump = 0.05;      //!< stress jump at a switch (relative to |σ|) that is too large
 };
 
@@ -59,7 +59,8 @@ struct QuietStats {
 //! threshold; its RVE (the packing it was cloned from, untouched until then) then catches up
 //! with the whole accumulated deformation in one DEM update, and the difference between the
 //! two stresses is the jump the switch makes. A jump above `max_jump` halves the thresholds of
-//! the points still continuum (down to 1/64). After the switch the point is DEM, quiet or not.
+//! the points still continuum (the strain and the sine of the angle, down to 1/64). After the
+//! switch the point is DEM, quiet or not.
 //!
 //! All state is replicated on every rank and updated from replicated data only (the MPM
 //! increments and the gathered stresses): every rank takes the same decisions, whatever the

@@ -32,7 +32,8 @@ def main():
     if exceeded:
         if not (s["jumps_above_max_jump"] > 0 and s["max_jump"] > bound):
             problems.append(f"no jump above the bound {bound}")
-        if not s["threshold_scale"] <= 0.5 ** s["jumps_above_max_jump"] * (1 + 1e-12):
+        halved = max(0.5 ** s["jumps_above_max_jump"], 1.0 / 64.0)  # the scale stops at 1/64
+        if not abs(s["threshold_scale"] - halved) <= 1e-12:
             problems.append(f"threshold_scale {s['threshold_scale']} not halved per jump")
     elif s["jumps_above_max_jump"] != 0 or s["max_jump"] > bound or s["threshold_scale"] != 1:
         problems.append(f"a jump passed the bound {bound}: {s}")

@@ -177,6 +177,30 @@ TEST(QuietPoints, PackingProbeGivesTheStartingModuli) {
   EXPECT_LT((q.predicted(1) - fallback).norm(), 1e-9 * fallback.norm());
 }
 
+// In 3D, M = K + 4G/3 and L = K - 2G/3: the probe pair gives a 3D linear soil's K and G back, and
+// the fallback keeps K = G with that M (3M/7).
+TEST(QuietPoints, PackingProbeGivesTheStartingModuliIn3D) {
+  QuietPoints q;
+  q.start(2, spec(1e-4, 0.02, 50), 3, 1e3);
+  q.set_packing(0, anchor(), kBulk + 4.0 * kShear / 3.0, kBulk - 2.0 * kShear / 3.0);
+  q.set_packing(1, anchor(), kWaveModulus, 2.0 * kWaveModulus);
+  Mat3 dF = step(5e-5);
+  dF(2, 2) -= 0.4e-5;
+  ASSERT_FALSE(q.accumulate(0, dF));
+  ASSERT_FALSE(q.accumulate(1, dF));
+  auto soil = [&](double bulk, double shear) {
+    const Mat3 e = 0.5 * (dF - Mat3::Identity() + (dF - Mat3::Identity()).transpose());
+    const double ev = e.trace();
+    return Mat3(anchor() + bulk * ev * Mat3::Identity() +
+                2.0 * shear * (e - ev / 3.0 * Mat3::Identity()));
+  };
+  const Mat3 probed = soil(kBulk, kShear);
+  EXPECT_LT((q.predicted(0) - probed).norm(), 1e-9 * probed.norm());
+  const double equal = 3.0 * kWaveModulus / 7.0;
+  const Mat3 fallback = soil(equal, equal);
+  EXPECT_LT((q.predicted(1) - fallback).norm(), 1e-9 * fallback.norm());
+}
+
 TEST(QuietPoints, CheckpointRowContinuesIdentically) {
   QuietPoints a, b;
   a.start(1, spec(1e-4, 0.02, 50), 2, 1e3);
@@ -268,8 +292,7 @@ TEST(ContinuumStart, SwitchesAtTheFrictionThreshold) {
   while (!q.accumulate(0, shear))
     ++updates;
   // sin φ = 2G |ε_xx - ε_yy| / 2 / p = 2 G n 2e-5 / p passes sin 5° at update n.
-  const double expected =
-      std::ceil(std::sin(5.0 * M_PI / 180.0) * 1e5 / (2 * shear_modulus * 2e-5));
+  const double expected = std::ceil(std::sin(5.0 * kPi / 180.0) * 1e5 / (2 * shear_modulus * 2e-5));
   EXPECT_NEAR(updates + 1, expected, 1.0);
   EXPECT_LT((q.pending(0) - Mat3::Identity()).norm(), 0.05);
 }
@@ -327,6 +350,25 @@ TEST(ContinuumStart, CheckpointRowKeepsWhetherAPointSwitched) {
   EXPECT_EQ(b.stats().continuum_updates, a.stats().continuum_updates);
   EXPECT_EQ(a.accumulate(1, step(1e-4)), b.accumulate(1, step(1e-4)));
   EXPECT_EQ((a.predicted(1) - b.predicted(1)).norm(), 0.0);
+}
+
+// The mobilised friction threshold in 3D uses the largest and smallest principal stresses.
+TEST(ContinuumStart, FrictionThresholdIn3D) {
+  QuietPoints q;
+  q.start(1, quiet_off(), 3, 1e3, continuum_start(0.05, 5.0, 0.05));
+  q.set_packing(0, -1e5 * Mat3::Identity(), kWaveModulus, 0.0);
+  Mat3 shear = Mat3::Identity();  // shortening along z, lengthening along x
+  shear(0, 0) += 2e-5;
+  shear(2, 2) -= 2e-5;
+  int updates = 0;
+  while (!q.accumulate(0, shear))
+    ++updates;
+  // L = 0 in 3D: G = M / 2. sin φ = (σ_xx - σ_zz) / 2p = 2G n 2e-5 / p passes sin 5° at update n.
+  const double shear_modulus = 0.5 * kWaveModulus;
+  const double expected = std::ceil(std::sin(5.0 * kPi / 180.0) * 1e5 / (2 * shear_modulus * 2e-5));
+  EXPECT_NEAR(updates + 1, expected, 1.0);
+  const Mat3 s = q.predicted(0);
+  EXPECT_GE((s(0, 0) - s(2, 2)) / -(s(0, 0) + s(2, 2)), std::sin(5.0 * kPi / 180.0));
 }
 
 }  // namespace
