@@ -48,6 +48,17 @@ inline double deviatoric_stress(const Mat3& sigma, int dimension = 3) {
   return std::sqrt(1.5 * s.cwiseProduct(s).sum());
 }
 
+//! The largest and smallest principal stresses {σ1, σ3}, compression positive, of a
+//! tension-positive σ: in-plane for a 2D (disc) packing's stress.
+inline std::array<double, 2> extreme_principal_stresses(const Mat3& sigma, int dimension = 3) {
+  if (dimension == 2) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> e2(-sigma.topLeftCorner<2, 2>());
+    return {e2.eigenvalues()(1), e2.eigenvalues()(0)};
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(-sigma);
+  return {eig.eigenvalues()(2), eig.eigenvalues()(0)};  // ascending
+}
+
 //! Logarithmic (Hencky) strain ln V = ½ ln(F Fᵀ), tension positive. Principal stretches are
 //! floored at 1e-300 so that a degenerate F gives a large finite strain, not -inf.
 inline Mat3 hencky_strain(const Mat3& deformation) {

@@ -59,25 +59,13 @@ Mat3 spin_of(const Mat3& stress, const Mat3& increment, int d) {
   return omega * stress - stress * omega;
 }
 
-//! sin of the mobilised friction angle, (σ1 - σ3) / -(σ1 + σ3), of the principal stresses in
-//! the first `d` axes (tension positive); 1 when the stress is not compressive.
+//! sin of the mobilised friction angle, (σ1 - σ3) / (σ1 + σ3) compression positive, in the
+//! first `d` axes; 1 when the stress is not compressive.
 double mobilised_sin_friction(const Mat3& stress, int d) {
-  const Mat3 sym = 0.5 * (stress + stress.transpose());
-  double low = 0.0, high = 0.0;
-  if (d == 2) {
-    const double centre = 0.5 * (sym(0, 0) + sym(1, 1));
-    const double radius = std::hypot(0.5 * (sym(0, 0) - sym(1, 1)), sym(0, 1));
-    low = centre - radius;
-    high = centre + radius;
-  } else {
-    const Vec3 principal =
-        Eigen::SelfAdjointEigenSolver<Mat3>(sym, Eigen::EigenvaluesOnly).eigenvalues();
-    low = principal.minCoeff();
-    high = principal.maxCoeff();
-  }
-  if (!(low + high < 0.0))
+  const auto [s1, s3] = extreme_principal_stresses(stress, d);
+  if (!(s1 + s3 > 0.0))
     return 1.0;
-  return (high - low) / -(low + high);
+  return (s1 - s3) / (s1 + s3);
 }
 
 }  // namespace

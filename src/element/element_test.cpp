@@ -92,14 +92,7 @@ std::vector<double> history_row(int increment, double time, const Mat3& F,
 
 //! Mobilised friction angle from the extreme principal stresses (compression positive).
 double mobilised_friction_deg(const Mat3& sigma, int dimension) {
-  Eigen::SelfAdjointEigenSolver<Mat3> eig(-sigma);
-  Vec3 s = eig.eigenvalues();  // ascending
-  double s1 = s(2), s3 = s(0);
-  if (dimension == 2) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> e2(-sigma.topLeftCorner<2, 2>());
-    s1 = e2.eigenvalues()(1);
-    s3 = e2.eigenvalues()(0);
-  }
+  const auto [s1, s3] = extreme_principal_stresses(sigma, dimension);
   return std::asin((s1 - s3) / (s1 + s3)) * 180.0 / kPi;
 }
 
