@@ -302,6 +302,54 @@ def footing_intrusion(work):
                      "none.json")
 
 
+def footing_noise(work):
+    """A footing at 0.5 m/s (B = 0.2 m, q_s = 100 kPa) with three field outputs: one before
+    s/B = 0.2 whose 50 m/s points must be left out, then speeds 0.01 ... 1 m/s and twice that
+    (95th percentiles 0.9505 and 1.901), 7 and 12 of 100 points below 1 kPa; the load 12 q_s
+    to s/B 0.4 with one 13, 8 to 1.0, 9 beyond."""
+    s_over_b = 0.025 + 0.05 * np.arange(25)  # never on a window's edge
+    q = np.where(s_over_b < 0.4, 12.0, np.where(s_over_b < 1.0, 8.0, 9.0))
+    q[5] = 13.0  # s/B = 0.275
+    settlement = 0.2 * s_over_b
+    time = settlement / 0.5
+    synthetic.write_history(work, ["step", "time", "settlement", "q"],
+                            np.column_stack([np.arange(25), time, settlement, 1e5 * q]))
+    rng = np.random.default_rng(3)
+    directions = rng.normal(size=(100, 3))
+    directions /= np.linalg.norm(directions, axis=1)[:, None]
+    speeds = 0.01 * np.arange(1, 101)
+
+    def output(k, scale, free):
+        stress = np.zeros((100, 6))
+        stress[:, :3] = -1e5
+        stress[rng.permutation(100)[:free], :3] = -500.0
+        return (k, time[k], {"positions": rng.random((100, 3)),
+                             "velocity": rng.permutation(speeds)[:, None] * scale * directions,
+                             "stress": stress})
+
+    synthetic.write_fields(work, [output(1, 50.0, 40), output(10, 1.0, 7), output(20, 2.0, 12)])
+    case = os.path.join(work, "case.json")
+    open(case, "w").write('{"rigid_bodies": [{"type": "footing", "width": [0.2]}], '
+                          '"boundary_conditions": [{"type": "traction", "traction": [0, -1e5]}]}')
+    result = run_tool("footing_noise.py", work, "--case", case, dpi=0)
+    expect(result.returncode == 0, "footing_noise failed: " + result.stderr)
+    row = [line.split() for line in result.stdout.splitlines() if line.rstrip().endswith(work)]
+    expect(len(row) == 1, f"one row per run: {result.stdout!r}")
+    values = [float(v) for v in row[0][:10]]
+    expected = [1.225, 0.9505, 1.901, 2.0, 4.0, 12.0, 13.0, (5 * 12 + 13) / 6, 8.0, 9.0]
+    for name, got, want in zip(["s/B", "p95 lo", "p95 hi", "fastest", "/ v_f", "free %", "peak",
+                                "0.1-0.4", "0.4-1.0", "1.0-1.5"], values, expected):
+        expect(abs(got - want) <= 0.006 * max(1.0, abs(want)), f"{name}: {got}, expected {want}")
+    # --from past every output, a case without a surcharge, a run without fields: exit 2.
+    expect_bad_input(run_tool("footing_noise.py", work, "--case", case, "--from", 2, dpi=0),
+                     "no field output")
+    bare = os.path.join(work, "bare.json")
+    open(bare, "w").write('{"rigid_bodies": [{"type": "footing", "width": [0.2]}]}')
+    expect_bad_input(run_tool("footing_noise.py", work, "--case", bare, dpi=0), "traction")
+    os.remove(os.path.join(work, "results.h5"))
+    expect_bad_input(run_tool("footing_noise.py", work, "--case", case, dpi=0), "results.h5")
+
+
 # ---- fields -------------------------------------------------------------------------------
 def lattice(dimension, n=(24, 12, 6), h=0.1):
     axes = [(np.arange(k) + 0.5) * h for k in n[:dimension]]
@@ -384,7 +432,7 @@ def real_footing(work, mpm_lig):
 
 
 CASES = {f.__name__: f for f in (real_footing, shear_element, shear_mpm, shear_points, shear_bad, force_chains, force_chains_bad,
-                                 footing, footing_bad, footing_intrusion, fields_2d, fields_3d, fields_bad)}
+                                 footing, footing_bad, footing_intrusion, footing_noise, fields_2d, fields_3d, fields_bad)}
 
 if __name__ == "__main__":
     if len(sys.argv) not in (3, 4) or sys.argv[1] not in CASES:

@@ -1,0 +1,95 @@
+#!/usr/bin/python3
+"""How fast a footing run's material points move against the footing, and how many packings carry nothing.
+
+usage: footing_noise.py OUTPUT_DIR [OUTPUT_DIR ...] --case CASE.json [--from S] [--free-below P]
+
+For each run, over the field outputs of results.h5 from s/B = S on (default 0.2, past the
+first loading): the lowest and highest 95th percentile of the points' speeds, the fastest point
+and its speed over the footing's, and the largest share of points whose mean stress
+p = -tr(sigma)/3 is below P (default 1 kPa: a packing that has lost its contacts). Then the
+load q/q_s: the highest value to s/B = 0.4 and the means over s/B 0.1-0.4, 0.4-1.0 and 1.0-1.5
+(over the part of a window the run reached; nan for a window it has not reached). B and q_s come from the case (rigid_bodies[0].width[0],
+the surface traction); the footing's speed is the settlement's mean rate in history.csv.
+
+Pure FLIP (analysis.flip 1) keeps velocity patterns the grid cannot see; their speeds far above
+the footing's are what this table shows (docs/footing_dem_e0187.md).
+"""
+import argparse
+import os
+
+import numpy as np
+
+from mpm_lig_post import cli
+from mpm_lig_post.errors import InputError
+from mpm_lig_post.fields import FieldFile
+from mpm_lig_post.tables import read_history, read_json, require_columns
+
+
+def footing_scales(case_path):
+    """(B, q_s) of the case's first footing and surface traction."""
+    case = read_json(case_path)
+    try:
+        width = float(case["rigid_bodies"][0]["width"][0])
+    except (KeyError, IndexError, TypeError, ValueError):
+        raise InputError(f"{case_path}: no rigid_bodies[0].width") from None
+    for bc in case.get("boundary_conditions", []):
+        if bc.get("type") == "traction" and bc.get("traction"):
+            return width, abs(float(bc["traction"][-1]))
+    raise InputError(f"{case_path}: no traction boundary condition (the surcharge q_s)")
+
+
+def window_mean(s_over_b, q, lo, hi):
+    inside = (s_over_b >= lo) & (s_over_b <= hi)
+    return q[inside].mean() if inside.any() else float("nan")
+
+
+def run_row(directory, width, surcharge, start, free_below):
+    history_path = os.path.join(directory, "history.csv")
+    history = read_history(history_path)
+    require_columns(history, ("time", "settlement", "q"), history_path)
+    if history["time"][-1] <= 0.0:
+        raise InputError(f"{history_path}: the footing has not moved")
+    footing_speed = history["settlement"][-1] / history["time"][-1]
+    s_over_b = history["settlement"] / width
+    q = history["q"] / surcharge
+    fields = FieldFile(os.path.join(directory, "results.h5"))
+    p95, fastest, free = [], [], []
+    for step in fields.steps:
+        f = fields.step(step)
+        if np.interp(f.time, history["time"], s_over_b) < start:
+            continue
+        speed = np.linalg.norm(f["velocity"], axis=1)
+        stress = f["stress"]
+        p = -(stress[:, 0] + stress[:, 1] + stress[:, 2]) / 3.0
+        p95.append(np.percentile(speed, 95))
+        fastest.append(speed.max())
+        free.append(np.mean(p < free_below))
+    fields.close()
+    if not p95:
+        raise InputError(f"{directory}: no field output at s/B >= {start:g}")
+    early = s_over_b <= 0.4
+    return (f"{s_over_b[-1]:6.2f} {min(p95):6.2f} {max(p95):6.2f} {max(fastest):7.2f} "
+            f"{max(fastest) / footing_speed:6.1f} {100 * max(free):6.1f} {q[early].max():7.2f} "
+            f"{window_mean(s_over_b, q, 0.1, 0.4):7.2f} {window_mean(s_over_b, q, 0.4, 1.0):7.2f} "
+            f"{window_mean(s_over_b, q, 1.0, 1.5):7.2f}  {directory}")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("runs", nargs="+", help="output folders of footing runs")
+    p.add_argument("--case", required=True, help="the runs' case file (B and q_s)")
+    p.add_argument("--from", dest="start", type=float, default=0.2,
+                   help="first s/B of the outputs looked at (default 0.2)")
+    p.add_argument("--free-below", type=float, default=1e3,
+                   help="mean stress [Pa] below which a point counts as carrying nothing (default 1e3)")
+    args = p.parse_args()
+    width, surcharge = footing_scales(args.case)
+    print(f"speeds in m/s over the outputs from s/B = {args.start:g}; q in q_s = {surcharge:g} Pa")
+    print(f"{'s/B':>6} {'p95 lo':>6} {'p95 hi':>6} {'fastest':>7} {'/ v_f':>6} {'free %':>6} "
+          f"{'peak':>7} {'0.1-0.4':>7} {'0.4-1.0':>7} {'1.0-1.5':>7}  run")
+    for run in args.runs:
+        print(run_row(run, width, surcharge, args.start, args.free_below))
+
+
+if __name__ == "__main__":
+    cli.run(main)
