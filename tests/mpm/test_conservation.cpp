@@ -111,11 +111,14 @@ TEST_P(FreeFlight, MassAndMomentumAreConserved) {
 //! the velocity update's FLIP share `flip`.
 struct FirstStep {
   std::vector<Vec2> velocity, position, start_velocity;
+  double time_step = 0.0;
 };
 
-FirstStep first_step(double flip) {
+FirstStep first_step(double flip, double gravity = 0.0) {
   MpmProblem c = testing::load_case("free_flight", [&](nlohmann::json& j) {
     j["analysis"]["flip"] = flip;
+    if (gravity != 0.0)
+      j["gravity"] = {0.0, -gravity};
     j["analysis"]["end"]["steps"] = 1;
     j["output"]["fields"] = false;
   });
@@ -133,6 +136,7 @@ FirstStep first_step(double flip) {
       out.start_velocity.push_back(
           uniform + std::sin(0.5 * kPi * (p.reference[k][0] - start) / length) * amplitude);
     }
+    out.time_step = s.time();
   });
   return out;
 }
@@ -157,6 +161,22 @@ TEST(VelocityUpdate, FlipShareBlendsThePointsOwnVelocityWithTheGrids) {
   }
   // The grid does change the profile, so the checks above tell FLIP from PIC.
   EXPECT_GT(smoothed, 1e-2) << "largest change of a point's velocity under PIC: " << smoothed;
+}
+
+// Under gravity alone every node accelerates by g, so whatever the FLIP share every point's
+// velocity after the first step is its force-free one plus g dt: the grid's increment enters
+// once, in the FLIP part and in the PIC part alike.
+TEST(VelocityUpdate, EveryFlipShareAddsTheGridsIncrementOnce) {
+  constexpr double g = 9.81;
+  for (const double flip : {1.0, 0.99, 0.0}) {
+    const FirstStep still = first_step(flip), falling = first_step(flip, g);
+    ASSERT_EQ(still.velocity.size(), falling.velocity.size());
+    ASSERT_GT(falling.time_step, 0.0);
+    const Vec2 increment(0.0, -g * falling.time_step);
+    for (std::size_t k = 0; k < still.velocity.size(); ++k)
+      ASSERT_LT((falling.velocity[k] - still.velocity[k] - increment).norm(), 1e-12 * g)
+          << "flip " << flip << ", point " << k << ", g dt = " << g * falling.time_step;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Variants, FreeFlight,
