@@ -94,6 +94,10 @@ def main():
     p.add_argument("--free-below", type=float, default=1e3,
                    help="mean stress [Pa] below which a point counts as carrying nothing (default 1e3)")
     args = p.parse_args()
+    if not np.isfinite(args.start):
+        raise InputError(f"--from {args.start}: not a finite s/B")
+    if not (np.isfinite(args.free_below) and args.free_below > 0.0):
+        raise InputError(f"--free-below {args.free_below}: not a positive stress in Pa")
     width, surcharge, dimension = footing_scales(args.case)
     print(f"speeds in m/s over the outputs from s/B = {args.start:g}; q in q_s = {surcharge:g} Pa")
     print(f"{'s/B':>6} {'p95 lo':>6} {'p95 hi':>6} {'fastest':>7} {'/ v_f':>6} {'free %':>6} "

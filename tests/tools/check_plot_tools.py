@@ -344,9 +344,14 @@ def footing_noise(work):
     for name, got, want in zip(["s/B", "p95 lo", "p95 hi", "fastest", "/ v_f", "free %", "peak",
                                 "0.1-0.4", "0.4-1.0", "1.0-1.5"], values, expected):
         expect(abs(got - want) <= 0.0051, f"{name}: {got}, expected {want} (printed to 0.01)")
-    # --from past every output, a case without a surcharge, a run without fields: exit 2.
+    # --from past every output or not a number, --free-below not positive, a case without a
+    # surcharge, a run without fields: exit 2.
     expect_bad_input(run_tool("footing_noise.py", work, "--case", case, "--from", 2, dpi=0),
                      "no field output")
+    expect_bad_input(run_tool("footing_noise.py", work, "--case", case, "--from", "nan", dpi=0),
+                     "--from")
+    expect_bad_input(run_tool("footing_noise.py", work, "--case", case, "--free-below", 0, dpi=0),
+                     "--free-below")
     bare = os.path.join(work, "bare.json")
     open(bare, "w").write('{"rigid_bodies": [{"type": "footing", "width": [0.2]}]}')
     expect_bad_input(run_tool("footing_noise.py", work, "--case", bare, dpi=0), "traction")
