@@ -17,8 +17,7 @@ import os
 
 import numpy as np
 
-from mpm_lig_post import cli, figures
-from mpm_lig_post.errors import InputError
+from mpm_lig_post import cli, figures, footing
 from mpm_lig_post.fields import FieldFile
 from mpm_lig_post.tables import read_history, read_json, require_columns
 
@@ -26,16 +25,8 @@ from mpm_lig_post.tables import read_history, read_json, require_columns
 def footing_of(case_path):
     """(centre, half width, initial base, surcharge or None) of rigid_bodies[0]."""
     case = read_json(case_path)
-    try:
-        footing = case["rigid_bodies"][0]
-        centre, width, base = footing["center"], footing["width"], float(footing["base"])
-    except (KeyError, IndexError, TypeError, ValueError):
-        raise InputError(f"{case_path}: no rigid_bodies[0] with center, width and base") from None
-    surcharge = None
-    for bc in case.get("boundary_conditions", []):
-        if bc.get("type") == "traction" and bc.get("traction"):
-            surcharge = abs(float(bc["traction"][-1]))
-    return np.asarray(centre, float), 0.5 * np.asarray(width, float), base, surcharge
+    centre, width, base = footing.footing(case, case_path)
+    return centre, 0.5 * width, base, footing.surcharge(case)
 
 
 def points_inside(positions, centre, half_width, base):

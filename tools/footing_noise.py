@@ -20,7 +20,7 @@ import os
 
 import numpy as np
 
-from mpm_lig_post import cli
+from mpm_lig_post import cli, footing
 from mpm_lig_post.errors import InputError
 from mpm_lig_post.fields import FieldFile
 from mpm_lig_post.tables import read_history, read_json, require_columns
@@ -29,14 +29,14 @@ from mpm_lig_post.tables import read_history, read_json, require_columns
 def footing_scales(case_path):
     """(B, q_s, dimension) of the case's first footing and vertical surface traction."""
     case = read_json(case_path)
+    width = footing.width(case, case_path)
     try:
-        width = float(case["rigid_bodies"][0]["width"][0])
         dimension = int(case.get("dimension", 2))
-    except (KeyError, IndexError, TypeError, ValueError):
-        raise InputError(f"{case_path}: no rigid_bodies[0].width") from None
-    for bc in case.get("boundary_conditions", []):
-        if bc.get("type") == "traction" and bc.get("traction") and float(bc["traction"][-1]) != 0.0:
-            return width, abs(float(bc["traction"][-1])), dimension
+    except (TypeError, ValueError):
+        raise InputError(f"{case_path}: dimension is not an integer") from None
+    surcharge = footing.surcharge(case)
+    if surcharge is not None:
+        return width, surcharge, dimension
     raise InputError(f"{case_path}: no traction boundary condition with a vertical component "
                      "(the surcharge q_s)")
 

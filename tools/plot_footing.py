@@ -8,7 +8,7 @@ usage: plot_footing.py OUTPUT_DIR [-o picture.png] [--case CASE.json] [--width B
 Reads OUTPUT_DIR/history.csv (settlement [m], load, q [Pa] of the first footing) and
 summary.json when present (its peak_q is cross-checked). The footing width B comes from
 --width or from --case (rigid_bodies[0].width[0], the full width also for a half model). q is
-divided by the surcharge q_s (--surcharge, or the case's surface traction) or by the undrained
+divided by the surcharge q_s (--surcharge, or the case's first traction with a vertical component) or by the undrained
 strength c_u (--cu, or the case's tresca material; with --prandtl or without a
 surcharge); the horizontal lines are Vesic's
 N_q = tan^2(pi/4 + phi/2) exp(pi tan phi) for --phi DEG (over q_s) and Prandtl's 2 + pi
@@ -21,7 +21,7 @@ import os
 
 import numpy as np
 
-from mpm_lig_post import cli, figures
+from mpm_lig_post import cli, figures, footing
 from mpm_lig_post.errors import InputError
 from mpm_lig_post.tables import read_history, read_json, require_columns
 
@@ -35,18 +35,15 @@ def vesic_nq(phi_deg):
 def case_values(path):
     """(B, q_s, c_u) read from a case file; None where it does not say."""
     case = read_json(path)
-    width = surcharge = cu = None
     try:
-        width = float(case["rigid_bodies"][0]["width"][0])
-    except (KeyError, IndexError, TypeError, ValueError):
-        pass
-    for bc in case.get("boundary_conditions", []):
-        if bc.get("type") == "traction" and bc.get("traction"):
-            surcharge = abs(float(bc["traction"][-1]))
+        width = footing.width(case, path)
+    except InputError:
+        width = None
+    cu = None
     for m in case.get("materials", []):
         if m.get("type") == "tresca" and "undrained_strength" in m:
             cu = float(m["undrained_strength"])
-    return width, surcharge, cu
+    return width, footing.surcharge(case), cu
 
 
 def report_window(label, settlement, y, window):

@@ -241,9 +241,11 @@ def footing(work):
     nq = math.tan(math.pi / 4 + math.radians(PHI) / 2) ** 2 * math.exp(math.pi * math.tan(math.radians(PHI)))
     peak = footing_history(work, nq)
     case = os.path.join(work, "case.json")
+    # q_s is the first traction with a vertical component: the shear traction after it is not.
     open(case, "w").write('{"rigid_bodies": [{"type": "footing", "width": [%g]}], '
-                          '"boundary_conditions": [{"type": "traction", "traction": [0, %g]}]}'
-                          % (WIDTH, -SURCHARGE))
+                          '"boundary_conditions": [{"type": "traction", "traction": [0, %g]}, '
+                          '{"type": "traction", "traction": [%g, 0]}]}'
+                          % (WIDTH, -SURCHARGE, 0.3 * SURCHARGE))
     result = run_tool("plot_footing.py", work, "--case", case, "--phi", PHI)
     expect(result.returncode == 0, "plot_footing failed")
     expect(abs(numbers_after(result.stdout, "N_q(28.1 deg) =")[0] - 14.88) < 0.01, "N_q(28.1)")
@@ -275,7 +277,8 @@ def footing_bad(work):
 
 def footing_intrusion(work):
     """Points placed inside a descending footing (centre 0, B = 0.2 m, base 0.6 m at s = 0):
-    0, 2, then 1 point inside at three output steps; the count is read from the table."""
+    0, 2, then 1 point inside at three output steps; the count is read from the table. q_s comes
+    from the vertical traction, not the shear traction after it."""
     t = np.linspace(0, 0.2, 21)
     s = 0.5 * t  # settlement: base 0.6 - s
     synthetic.write_history(work, ["step", "time", "settlement", "q"],
@@ -289,7 +292,7 @@ def footing_intrusion(work):
     case = os.path.join(work, "case.json")
     open(case, "w").write('{"rigid_bodies": [{"type": "footing", "center": [0], "width": [0.2], '
                           '"base": 0.6}], "boundary_conditions": [{"type": "traction", '
-                          '"traction": [0, -1e5]}]}')
+                          '"traction": [0, -1e5]}, {"type": "traction", "traction": [3e4, 0]}]}')
     result = run_tool("footing_intrusion.py", work, "--case", case)
     expect(result.returncode == 0, "footing_intrusion failed: " + result.stderr)
     rows = [line.split() for line in result.stdout.splitlines() if re.match(r"\s*[0-9.]+\s+\d+\s", line)]

@@ -13,6 +13,7 @@ import os
 
 import numpy as np
 
+from . import footing
 from .errors import InputError
 from .shear import count_cycles, cycle_table, shear_series
 from .tables import read_history, require_columns
@@ -157,15 +158,8 @@ def secant_moduli(run):
 
 def _footing_curve(run):
     settlement, q = run.columns("settlement", "q")
-    width = surcharge = None
-    try:
-        width = float(run.case["rigid_bodies"][0]["width"][0])
-    except (KeyError, IndexError, TypeError, ValueError):
-        raise InputError(f"{run.directory}: the case has no rigid_bodies[0].width") from None
-    for bc in run.case.get("boundary_conditions", []):
-        if bc.get("type") == "traction" and bc.get("traction"):
-            surcharge = abs(float(bc["traction"][-1]))
-    return settlement / width, q / (surcharge or 1.0)
+    width = footing.width(run.case, run.directory)
+    return settlement / width, q / (footing.surcharge(run.case) or 1.0)
 
 
 def plateau(lo, hi):
