@@ -144,7 +144,11 @@ def main():
     ax.set_ylabel(ylabel)
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
-    ax.legend(loc="lower right" if not others else "best", frameon=False)
+    if len(others) >= 2:
+        # Several curves fill the axes: the legend goes below them, not over the data.
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
+    else:
+        ax.legend(loc="lower right" if not others else "best", frameon=False)
     ax.set_title(f"strip footing, B = {width:g} m: {os.path.basename(os.path.abspath(directory))}")
     fig.tight_layout()
     figures.save(fig, cli.picture_path(args), args.dpi)
