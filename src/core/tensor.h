@@ -52,10 +52,11 @@ inline double deviatoric_stress(const Mat3& sigma, int dimension = 3) {
 //! tension-positive σ: in-plane for a 2D (disc) packing's stress.
 inline std::array<double, 2> extreme_principal_stresses(const Mat3& sigma, int dimension = 3) {
   if (dimension == 2) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> e2(-sigma.topLeftCorner<2, 2>());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> e2(-sigma.topLeftCorner<2, 2>(),
+                                                            Eigen::EigenvaluesOnly);
     return {e2.eigenvalues()(1), e2.eigenvalues()(0)};
   }
-  const Eigen::SelfAdjointEigenSolver<Mat3> eig(-sigma);
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(-sigma, Eigen::EigenvaluesOnly);
   return {eig.eigenvalues()(2), eig.eigenvalues()(0)};  // ascending
 }
 

@@ -137,7 +137,7 @@ Mat3 QuietPoints::predict(const Mat3& anchor, const Mat3& increment, double bulk
 bool QuietPoints::passes_switch_threshold(std::size_t point) const {
   const double scale = stats_.threshold_scale;
   const double strain = (pending_[point] - Mat3::Identity()).norm();
-  const double sin_limit = scale * std::sin(continuum_start_.friction_deg * kPi / 180.0);
+  const double sin_limit = scale * std::sin(continuum_start_.friction_deg * kDegree);
   return strain >= scale * continuum_start_.strain ||
          mobilised_sin_friction(predicted_[point], dimension_) >= sin_limit;
 }

@@ -189,6 +189,9 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
   history_rows_ = resume->history_rows;
   peak_bearing_pressure_ = resume->peak_bearing_pressure;
   last_step_ = solver.steps();
+  // The restored packings carry the run's particle-steps so far: the first progress line's DEM
+  // rate counts only the steps made after the resume.
+  last_particle_steps_ = total_cost(solver.materials()).particle_steps;
 }
 
 template <int D>

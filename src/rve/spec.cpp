@@ -68,6 +68,8 @@ ContactSpec parse_contact(const CaseNode& node) {
   }
   if (node.has("friction") == node.has("friction_deg"))
     node.fail("give exactly one of friction (coefficient) and friction_deg (angle)");
+  // (deg * π) / 180 rather than deg * kDegree: the two round differently for some angles (23°),
+  // and every documented DEM run was made with this rounding.
   c.friction = node.has("friction")
                    ? node.non_negative("friction")
                    : std::tan(node.in_range("friction_deg", 0.0, 89.0) * kPi / 180);
