@@ -26,7 +26,7 @@ def footing_of(case_path):
     """(centre, half width, initial base, surcharge or None) of rigid_bodies[0]."""
     case = read_json(case_path)
     centre, width, base = footing.footing(case, case_path)
-    return centre, 0.5 * width, base, footing.surcharge(case)
+    return centre, 0.5 * width, base, footing.surcharge(case, case_path)
 
 
 def points_inside(positions, centre, half_width, base):

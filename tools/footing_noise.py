@@ -34,7 +34,7 @@ def footing_scales(case_path):
         dimension = int(case.get("dimension", 2))
     except (TypeError, ValueError):
         raise InputError(f"{case_path}: dimension is not an integer") from None
-    surcharge = footing.surcharge(case)
+    surcharge = footing.surcharge(case, case_path)
     if surcharge is not None:
         return width, surcharge, dimension
     raise InputError(f"{case_path}: no traction boundary condition with a vertical component "

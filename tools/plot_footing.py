@@ -8,9 +8,9 @@ usage: plot_footing.py OUTPUT_DIR [-o picture.png] [--case CASE.json] [--width B
 Reads OUTPUT_DIR/history.csv (settlement [m], load, q [Pa] of the first footing) and
 summary.json when present (its peak_q is cross-checked). The footing width B comes from
 --width or from --case (rigid_bodies[0].width[0], the full width also for a half model). q is
-divided by the surcharge q_s (--surcharge, or the case's first traction with a vertical component) or by the undrained
-strength c_u (--cu, or the case's tresca material; with --prandtl or without a
-surcharge); the horizontal lines are Vesic's
+divided by the surcharge q_s (--surcharge, or the case's first traction with a vertical
+component) or by the undrained strength c_u (--cu, or the case's tresca material; with
+--prandtl or without a surcharge); the horizontal lines are Vesic's
 N_q = tan^2(pi/4 + phi/2) exp(pi tan phi) for --phi DEG (over q_s) and Prandtl's 2 + pi
 (--prandtl, over c_u). Without a normaliser q is plotted in kPa.
 --compare draws other runs of the same footing (same B and normaliser) as dashed lines, e.g. a
@@ -43,7 +43,7 @@ def case_values(path):
     for m in case.get("materials", []):
         if m.get("type") == "tresca" and "undrained_strength" in m:
             cu = float(m["undrained_strength"])
-    return width, footing.surcharge(case), cu
+    return width, footing.surcharge(case, path), cu
 
 
 def report_window(label, settlement, y, window):

@@ -303,6 +303,12 @@ def footing_intrusion(work):
     check_picture(os.path.join(work, "intrusion.png"), min_colours=8)
     expect_bad_input(run_tool("footing_intrusion.py", work, "--case", os.path.join(work, "none.json")),
                      "none.json")
+    words = os.path.join(work, "words.json")
+    open(words, "w").write('{"rigid_bodies": [{"type": "footing", "center": [0], "width": [0.2], '
+                           '"base": 0.6}], "boundary_conditions": [{"type": "traction", '
+                           '"traction": [0, "heavy"]}]}')
+    expect_bad_input(run_tool("footing_intrusion.py", work, "--case", words),
+                     "words.json", "boundary_conditions[0].traction")
 
 
 def footing_noise(work):

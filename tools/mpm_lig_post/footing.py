@@ -6,13 +6,21 @@ import numpy as np
 from .errors import InputError
 
 
-def surcharge(case):
+def surcharge(case, source="the case"):
     """q_s [Pa]: the size of the vertical (last) component of the first traction boundary
-    condition that has one; None when the case has no such traction."""
-    for bc in case.get("boundary_conditions", []):
-        traction = bc.get("traction") if bc.get("type") == "traction" else None
-        if traction and float(traction[-1]) != 0.0:
-            return abs(float(traction[-1]))
+    condition that has one; None when the case has no such traction. InputError naming
+    `source` when a traction is not a list of numbers."""
+    conditions = case.get("boundary_conditions", [])
+    for i, bc in enumerate(conditions if isinstance(conditions, list) else []):
+        if not isinstance(bc, dict) or bc.get("type") != "traction" or not bc.get("traction"):
+            continue
+        try:
+            vertical = float(bc["traction"][-1])
+        except (TypeError, ValueError, KeyError, IndexError):
+            raise InputError(f"{source}: boundary_conditions[{i}].traction is not a list of "
+                             "numbers") from None
+        if vertical != 0.0:
+            return abs(vertical)
     return None
 
 

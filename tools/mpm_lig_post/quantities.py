@@ -159,7 +159,7 @@ def secant_moduli(run):
 def _footing_curve(run):
     settlement, q = run.columns("settlement", "q")
     width = footing.width(run.case, run.directory)
-    return settlement / width, q / (footing.surcharge(run.case) or 1.0)
+    return settlement / width, q / (footing.surcharge(run.case, run.directory) or 1.0)
 
 
 def plateau(lo, hi):
