@@ -309,6 +309,15 @@ def footing_intrusion(work):
                            '"traction": [0, "heavy"]}]}')
     expect_bad_input(run_tool("footing_intrusion.py", work, "--case", words),
                      "words.json", "boundary_conditions[0].traction")
+    # A case that is not a JSON object, or whose boundary_conditions is not a list: exit 2.
+    listed = os.path.join(work, "listed.json")
+    open(listed, "w").write('[{"rigid_bodies": []}]')
+    expect_bad_input(run_tool("plot_footing.py", work, "--case", listed), "listed.json", "JSON object")
+    mapped = os.path.join(work, "mapped.json")
+    open(mapped, "w").write('{"rigid_bodies": [{"type": "footing", "center": [0], "width": [0.2], '
+                            '"base": 0.6}], "boundary_conditions": {"type": "traction"}}')
+    expect_bad_input(run_tool("footing_intrusion.py", work, "--case", mapped),
+                     "mapped.json", "boundary_conditions is not a list")
 
 
 def footing_noise(work):

@@ -6,12 +6,14 @@ import numpy as np
 from .errors import InputError
 
 
-def surcharge(case, source="the case"):
+def surcharge(case, source):
     """q_s [Pa]: the size of the vertical (last) component of the first traction boundary
     condition that has one; None when the case has no such traction. InputError naming
-    `source` when a traction is not a list of numbers."""
+    `source` when boundary_conditions is not a list or a traction not a list of numbers."""
     conditions = case.get("boundary_conditions", [])
-    for i, bc in enumerate(conditions if isinstance(conditions, list) else []):
+    if not isinstance(conditions, list):
+        raise InputError(f"{source}: boundary_conditions is not a list")
+    for i, bc in enumerate(conditions):
         if not isinstance(bc, dict) or bc.get("type") != "traction" or not bc.get("traction"):
             continue
         try:

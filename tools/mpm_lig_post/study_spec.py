@@ -117,8 +117,6 @@ class Study:
     def __init__(self, path):
         self.path = path
         spec = read_json(path)
-        if not isinstance(spec, dict):
-            raise InputError(f"{path}: the study must be a JSON object")
         here = os.path.dirname(os.path.abspath(path))
         base = _need(spec, "base", path)
         self.base_path = base if os.path.isabs(base) else os.path.join(here, base)

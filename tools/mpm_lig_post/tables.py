@@ -37,13 +37,17 @@ def require_columns(table, names, path):
 
 
 def read_json(path, required=True):
-    """A JSON file as a dict; None when it is absent and not required."""
+    """A JSON file as a dict; None when it is absent and not required. Every file the tools read
+    (case, summary, study) is a JSON object; anything else is refused here, once."""
     if not os.path.isfile(path):
         if required:
             raise InputError(f"{path}: file not found")
         return None
     try:
         with open(path) as f:
-            return json.load(f)
+            content = json.load(f)
     except json.JSONDecodeError as e:
         raise InputError(f"{path}: not valid JSON ({e})") from None
+    if not isinstance(content, dict):
+        raise InputError(f"{path}: must be a JSON object, not a {type(content).__name__}")
+    return content
