@@ -8,8 +8,12 @@ namespace mpm_lig {
 struct TestHooks {
   //! MPM_LIG_KILL_AT_STEP=n: rank 0 kills itself with SIGKILL after MPM step n is recorded.
   long kill_at_step = -1;
-  //! MPM_LIG_TERM_AT_STEP=n: rank 0 sends itself SIGTERM after MPM step n (a signal in that step).
+  //! MPM_LIG_TERM_AT_STEP=n: rank 0 sends itself SIGTERM after MPM step n (a signal in that step),
+  //! or after increment n of an element test.
   long term_at_step = -1;
+  //! MPM_LIG_TERM_AT_PACKING=k: the rank preparing dem_rve packing k sends itself SIGTERM as it
+  //! starts on it (a signal in the middle of the preparation).
+  long term_at_packing = -1;
   //! MPM_LIG_FAULT_POINT=i: the rank owning dem_rve point i sends its engine an unknown command.
   long fault_point = -1;
   //! MPM_LIG_FAULT_UPDATE=u: ... at the u-th update of that material (default 1).

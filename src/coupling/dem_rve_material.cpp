@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
 #include "core/mpi_session.h"
+#include "core/stop_signal.h"
 #include "coupling/point_checkpoint.h"
 #include "dem/file_name.h"
 #include "rve/consolidation.h"
@@ -58,6 +60,8 @@ template <class Work>
 auto or_end_job(const std::string& what, Work&& work) {
   try {
     return work();
+  } catch (const StopRequested&) {
+    throw;  // agreed on by the RVE's ranks: the caller stops with the others
   } catch (const std::exception& e) {
     abort_job(what + ": " + e.what(), 1);
   }
@@ -141,29 +145,29 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   // The packings are spread over the rank groups like RVEs are.
   RveLayout layout(comm_, ranks_per_rve_, static_cast<std::size_t>(packing_count_));
   std::vector<double> owned;
+  int saved = 0;
+  bool stopped = false;
   for (const std::size_t k : layout.owned()) {
-    const std::string label = path_ + " packing " + std::to_string(k);
-    std::unique_ptr<rve::Rve> rve;
-    if (spec_.restart_file.empty()) {
-      rve::RveSpec spec = spec_;
-      spec.seed += k;
-      rve = rve::Rve::generate(spec, layout.group_comm(), label);
-      // A missed target void ratio ends the whole job: other rank groups wait for this one.
-      or_end_job(label + " not prepared",
-                 [&] { rve::require_void_ratio(*rve, rve::consolidate(*rve)); });
-      or_end_job(label + " not saved", [&] { rve->write_restart(files[k]); });
-    } else {
-      rve = or_end_job(label + " not loaded", [&] {
-        return rve::Rve::from_restart(spec_, files[k], layout.group_comm(), label);
-      });
+    try {
+      const std::vector<double> v = describe(prepare_packing(k, files[k], layout.group_comm()));
+      owned.insert(owned.end(), v.begin(), v.end());
+      ++saved;
+    } catch (const StopRequested&) {
+      stopped = true;  // this group's ranks agreed; the others learn it below
+      break;
     }
-    Packing p;
-    const rve::Observables now = rve->observe();
-    p.stress = now.stress;
-    p.void_ratio = now.void_ratio;
-    probe_moduli(*rve, p);
-    const std::vector<double> v = describe(p);
-    owned.insert(owned.end(), v.begin(), v.end());
+  }
+  // Every rank gets here, stopped or not: the stop is decided for the whole job at once.
+  int counts[2] = {stopped ? 1 : 0, layout.group_leader() ? saved : 0};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT, MPI_SUM, comm_);
+  if (counts[0] > 0 || stop_requested(comm_)) {
+    std::string where = spec_.restart_file.empty()
+                            ? std::to_string(counts[1]) + " of " + std::to_string(packing_count_) +
+                                  " packings saved in " + work_dir +
+                                  " (a later run prepares them all again)"
+                            : "its packing loaded from " + spec_.restart_file;
+    throw StopRequested("stopped by a signal while preparing " + path_ + ": " + where +
+                        "; no results and no checkpoint were written");
   }
   const std::vector<double> all = layout.gather(owned, kPackingValues);
   packings_.clear();
@@ -171,6 +175,43 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
     packings_.push_back(packing_from(&all[k * kPackingValues], files[k]));
   }
   cost_.preparation_seconds += MPI_Wtime() - start;
+}
+
+Packing DemRveMaterial::prepare_packing(std::size_t k, const std::string& file,
+                                       MPI_Comm group_comm) const {
+  const std::string label = path_ + " packing " + std::to_string(k);
+  if (hooks_.term_at_packing == static_cast<long>(k))
+    std::raise(SIGTERM);
+  std::unique_ptr<rve::Rve> rve;
+  if (spec_.restart_file.empty()) {
+    rve::RveSpec spec = spec_;
+    spec.seed += k;
+    rve = rve::Rve::generate(spec, group_comm, label);
+    // A missed target void ratio ends the whole job: other rank groups wait for this one.
+    or_end_job(label + " not prepared",
+               [&] { rve::require_void_ratio(*rve, rve::consolidate(*rve)); });
+    // Saved under a temporary name first: a packing file is complete or absent, whatever
+    // stops the run while it is written.
+    const std::string partial = file + ".partial";
+    or_end_job(label + " not saved", [&] {
+      rve->write_restart(partial);
+      int group_rank = 0;
+      MPI_Comm_rank(group_comm, &group_rank);
+      if (group_rank == 0)
+        std::filesystem::rename(partial, file);
+      MPI_Barrier(group_comm);
+    });
+  } else {
+    rve = or_end_job(label + " not loaded", [&] {
+      return rve::Rve::from_restart(spec_, file, group_comm, label);
+    });
+  }
+  Packing p;
+  const rve::Observables now = rve->observe();
+  p.stress = now.stress;
+  p.void_ratio = now.void_ratio;
+  probe_moduli(*rve, p);
+  return p;
 }
 
 double DemRveMaterial::density() const {

@@ -82,6 +82,9 @@ class DemRveMaterial final : public materials::Material {
   const rve::RveSpec& spec() const { return spec_; }
 
  private:
+  //! Packing k, generated and consolidated (saved to `file`) or loaded from the case's
+  //! restart file, on the ranks of `group_comm`. Throws StopRequested when they agree to stop.
+  Packing prepare_packing(std::size_t k, const std::string& file, MPI_Comm group_comm) const;
   void create_rves();
   void start_work_ledger();
   //! The increments the RVEs run this update: dF itself, or with quiet points the increments

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -10,6 +11,7 @@
 
 #include "core/build_id.h"
 #include "core/resources.h"
+#include "core/stop_signal.h"
 #include "dem/file_name.h"
 #include "element/strain_path.h"
 #include "io/csv_history.h"
@@ -236,7 +238,14 @@ RunEnd ElementTest::run(const RunContext& context) {
   nlohmann::json peak = state_json(now, rve_.dimension);
   const int n = path->increments();
   LateralControl lateral(confining, rve_.dimension);
+  int written = 0;  // the last increment in history.csv
   for (int k = 0; k < n; ++k) {
+    if (stop_requested(context.comm))
+      throw StopRequested("stopped by a signal after increment " + std::to_string(k) + " of " +
+                          std::to_string(n) + ": " + dir.string() +
+                          "/history.csv holds increments 0 ... " + std::to_string(written) +
+                          ", no summary.json (an element test writes no checkpoints: run it "
+                          "again with --replace)");
     const Mat3 dF = path->increment(k, now.stress);
     int substeps = rve->deform(dF);
     F = dF * F;
@@ -260,8 +269,13 @@ RunEnd ElementTest::run(const RunContext& context) {
       lateral.add(now.stress, corrections);
     rve->check_health(now);
     const bool last = k + 1 == n;
-    if (writer && ((k + 1) % test_.output_every == 0 || last))
-      history->write(history_row(k + 1, time, F, now, rve_.dimension, substeps));
+    if ((k + 1) % test_.output_every == 0 || last) {
+      if (writer)
+        history->write(history_row(k + 1, time, F, now, rve_.dimension, substeps));
+      written = k + 1;
+    }
+    if (rank == 0 && k + 1 == context.hooks.term_at_step)
+      std::raise(SIGTERM);  // as a signal arriving during that increment
     if ((test_.snapshot_every > 0 && (k + 1) % test_.snapshot_every == 0) || last)
       snapshot(k + 1);
     const double phi = mobilised_friction_deg(now.stress, rve_.dimension);

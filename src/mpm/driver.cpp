@@ -12,6 +12,7 @@
 
 #include "core/case_error.h"
 #include "core/resources.h"
+#include "core/stop_signal.h"
 
 #include "mpm/checkpoint.h"
 #include "mpm/checkpoint_folder.h"
@@ -20,27 +21,6 @@
 
 namespace mpm_lig::mpm {
 namespace {
-
-volatile std::sig_atomic_t g_stop_requested = 0;
-
-extern "C" void request_stop(int /*signal*/) {
-  g_stop_requested = 1;
-}
-
-//! SIGTERM (end of a batch job's wall time), SIGINT and SIGHUP (the terminal of an
-//! interactive run closed) only set a flag: the run stops between two steps, when all ranks
-//! agree, and writes a checkpoint first.
-void install_stop_handlers() {
-  std::signal(SIGTERM, request_stop);
-  std::signal(SIGINT, request_stop);
-  std::signal(SIGHUP, request_stop);
-}
-
-bool stop_requested(MPI_Comm comm) {
-  int local = g_stop_requested ? 1 : 0, any = 0;
-  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
-  return any != 0;
-}
 
 //! A new run in a folder that holds an earlier run's checkpoint: that checkpoint goes, so that
 //! a later --resume cannot continue it with this run's files. Only what a run writes there
@@ -66,6 +46,51 @@ void start_fresh_checkpoints(const std::string& run_dir, MPI_Comm comm) {
       fs::remove(root);
   }
   MPI_Barrier(comm);
+}
+
+//! A resumed run owns its folder (the application holds its lock): step folders other than the
+//! one `latest` names are what a write killed before its commit left (or the previous
+//! checkpoint a kill spared between the commit and its removal); they go, so that disk space
+//! is not lost to them and nobody mistakes them for checkpoints.
+void remove_stale_checkpoints(const std::string& run_dir, MPI_Comm comm) {
+  namespace fs = std::filesystem;
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const fs::path root = CheckpointFolder::root(run_dir);
+  const std::string latest = CheckpointFolder::latest_name_or_empty(run_dir);
+  if (rank == 0 && !latest.empty() && fs::is_directory(root)) {
+    std::vector<fs::path> stale;
+    for (const fs::directory_entry& e : fs::directory_iterator(root)) {
+      const std::string name = e.path().filename().string();
+      if (CheckpointFolder::is_step_name(name) && name != latest && !e.is_symlink() &&
+          e.is_directory())
+        stale.push_back(e.path());
+    }
+    for (const fs::path& p : stale) {
+      fs::remove_all(p);
+      std::printf("removed %s: a checkpoint write that did not finish\n", p.string().c_str());
+    }
+    if (fs::exists(root / "latest.tmp"))
+      fs::remove(root / "latest.tmp");
+    std::fflush(stdout);
+  }
+  MPI_Barrier(comm);
+}
+
+//! The gravity stage (initial stresses by damped dynamic relaxation): no checkpoint is written
+//! before the main stage starts, so a stop here leaves no results.
+template <int D>
+void run_gravity_stage(Solver<D>& solver, const MpmCase& c, MPI_Comm comm) {
+  solver.set_gravity_stage(true, c.gravity_stage_damping);
+  for (long k = 0; k < c.gravity_stage_steps; ++k) {
+    if (stop_requested(comm))
+      throw StopRequested("stopped by a signal in the gravity stage (step " + std::to_string(k) +
+                          " of " + std::to_string(c.gravity_stage_steps) +
+                          "): no results and no checkpoint were written (checkpoints start "
+                          "with the main stage)");
+    solver.step();
+  }
+  solver.begin_main_stage();
 }
 
 }  // namespace
@@ -100,18 +125,15 @@ bool run_case(MpmProblem problem, const RunOptions& options,
   if (checkpoints && !options.resume)
     start_fresh_checkpoints(options.run_dir, options.comm);
   if (options.resume) {
+    remove_stale_checkpoints(options.run_dir, options.comm);
     resumed = read_checkpoint<D>(c, solver, options.run_dir, options.comm);
   } else if (c.gravity_stage_steps > 0) {
-    solver.set_gravity_stage(true, c.gravity_stage_damping);
-    for (long k = 0; k < c.gravity_stage_steps; ++k)
-      solver.step();
-    solver.begin_main_stage();
+    run_gravity_stage(solver, c, options.comm);
   }
   const std::string obstacle = checkpoint_obstacle(solver);
   if (checkpoints) {
     if (c.checkpoint_every > 0 && !obstacle.empty())
       throw std::runtime_error("output.checkpoint_every: " + obstacle);
-    install_stop_handlers();
   }
   const long total = main_stage_steps(c, solver.dt());
   std::unique_ptr<Recorder<D>> recorder;

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/stop_signal.h"
+
 namespace mpm_lig::rve {
 namespace {
 
@@ -51,6 +53,10 @@ Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& s
     }
     rve.deform(dF, kChunk);
     steps_left -= kChunk;
+    // A preparation takes minutes at full size: a stop signal is honoured between servo cycles,
+    // decided by the RVE's ranks together (they run the same cycles).
+    if (stop_requested(rve.comm()))
+      throw StopRequested(rve.label() + ": preparation stopped by a signal");
     now = rve.observe();
     const double p_new = mean_pressure(now.stress, dim);
     if (stop_void_ratio > 0.0 && now.void_ratio <= stop_void_ratio &&

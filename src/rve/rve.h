@@ -33,6 +33,8 @@ class Rve {
 
   const RveSpec& spec() const { return spec_; }
   const std::string& label() const { return label_; }
+  //! The ranks this RVE runs on.
+  MPI_Comm comm() const { return comm_; }
   dem::Engine& engine() { return *engine_; }
 
   //! Apply the physical deformation increment `dF` over `substeps` DEM steps (0: as the spec's
