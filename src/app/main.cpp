@@ -15,6 +15,8 @@
 #include "core/case_node.h"
 #include "core/mpi_session.h"
 #include "core/printable.h"
+#include "core/stop_signal.h"
+#include "io/run_folder.h"
 #include "materials/material.h"
 #include "mpm/register.h"
 #if MPM_LIG_WITH_DEM
@@ -25,13 +27,16 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage:
-  mpm_lig CASE.json [--output DIR] [--resume DIR]   run a case
+  mpm_lig CASE.json [--output DIR] [--replace]      run a case
+  mpm_lig CASE.json --resume DIR                    continue a stopped run
   mpm_lig --validate CASE.json                      check the whole case; exit 0 (valid) or 2
   mpm_lig --help                                    this text
   mpm_lig --version                                 this build's identity
 
   Runs under MPI: mpirun -np N mpm_lig CASE.json
-  --output DIR   where results go (default: ./<case name>_out)
+  --output DIR   where results go (default: ./<case name>_out); one run at a time writes
+                 a folder, and a folder holding an earlier run's results is refused
+  --replace      replace the earlier run's results in the output folder
   --resume DIR   continue the run in DIR from its last checkpoint; the results continue
                  in DIR too (--output, if given as well, must name the same folder)
 
@@ -45,6 +50,7 @@ struct CommandLine {
   std::optional<std::string> output_dir;
   std::optional<std::string> resume_dir;
   bool validate_only = false;
+  bool replace = false;
   bool help = false;
   bool version = false;
 };
@@ -68,6 +74,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, bool report
       cl.version = true;
     } else if (arg == "--validate") {
       cl.validate_only = true;
+    } else if (arg == "--replace") {
+      cl.replace = true;
     } else if (arg == "--output" || arg == "-o") {
       const char* v = value("--output");
       if (!v)
@@ -88,6 +96,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, bool report
   }
   if (!cl.help && !cl.version && cl.case_file.empty())
     return fail("no case file given");
+  if (cl.replace && cl.resume_dir)
+    return fail("--replace and --resume exclude each other: a resume continues the results");
   return cl;
 }
 
@@ -155,9 +165,49 @@ std::string run_directory(const CommandLine& cl, std::string& refusal) {
   return fs::path(cl.case_file).stem().string() + "_out";
 }
 
+//! Rank 0 takes the run's folder (creating it for a new run) and checks that a new run loses
+//! no earlier results; every rank learns the outcome. On refusal `refusal` says why and
+//! nothing in the folder was changed (a folder created here is empty and removed again).
+std::unique_ptr<mpm_lig::io::RunFolderLock> take_run_folder(const CommandLine& cl,
+                                                            const std::string& dir,
+                                                            bool root_rank, std::string& refusal) {
+  namespace fs = std::filesystem;
+  std::unique_ptr<mpm_lig::io::RunFolderLock> lock;
+  int refused = 0;
+  if (root_rank) {
+    bool created = false;
+    try {
+      std::error_code ignored;
+      created = !cl.resume_dir && !fs::exists(dir, ignored) && fs::create_directories(dir);
+      lock = std::make_unique<mpm_lig::io::RunFolderLock>(dir);
+      const std::string earlier = cl.resume_dir ? "" : mpm_lig::io::earlier_results(dir);
+      if (!earlier.empty() && !cl.replace)
+        throw mpm_lig::io::RunFolderRefused(
+            "the output folder '" + dir + "' holds an earlier run's results (" + earlier +
+            "): continue that run with --resume " + dir + ", replace its results with "
+            "--replace, or choose another --output");
+      if (!earlier.empty())
+        mpm_lig::io::remove_run_outputs(dir);
+    } catch (const std::exception& e) {
+      refusal = e.what();
+      refused = 1;
+      lock.reset();
+      std::error_code ignored;
+      if (created)
+        fs::remove(dir, ignored);
+    }
+  }
+  MPI_Bcast(&refused, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (refused && refusal.empty())
+    refusal = "refused on rank 0";
+  return lock;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // First of all: a signal from here on stops the run cleanly, whatever phase it is in.
+  mpm_lig::install_stop_handlers();
   mpm_lig::MpiSession mpi(&argc, &argv);
   const bool root_rank = mpi.rank() == 0;
 
@@ -200,6 +250,15 @@ int main(int argc, char** argv) {
   context.hooks = mpm_lig::TestHooks::from_environment();
   if (!refusal.empty())
     return refuse(refusal, mpm_lig::kExitBadCase);
+  // A resume takes its folder before it reads the checkpoint there: a live run may be
+  // rewriting it, and must be named as the reason, not a checkpoint caught mid-write.
+  std::unique_ptr<mpm_lig::io::RunFolderLock> folder_lock;  // rank 0's
+  const bool take_first = context.resume && !cl->validate_only;
+  if (take_first) {
+    folder_lock = take_run_folder(*cl, context.output_dir, root_rank, refusal);
+    if (!refusal.empty())
+      return refuse(refusal, mpm_lig::kExitBadCase);
+  }
   try {
     analysis->check_run(context);
   } catch (const mpm_lig::CaseError& e) {
@@ -218,13 +277,21 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  if (mpm_lig::stop_requested(MPI_COMM_WORLD))
+    return refuse("stopped by a signal before the run started: nothing was written",
+                  mpm_lig::kExitStopped);
+  if (!take_first) {
+    folder_lock = take_run_folder(*cl, context.output_dir, root_rank, refusal);
+    if (!refusal.empty())
+      return refuse(refusal, mpm_lig::kExitBadCase);
+  }
   try {
-    if (root_rank && !context.resume)
-      std::filesystem::create_directories(context.output_dir);
-    MPI_Barrier(MPI_COMM_WORLD);
     // A stopped run has said where it stopped and whether its checkpoint was written.
     if (analysis->run(context) == mpm_lig::RunEnd::stopped)
       return mpm_lig::kExitStopped;
+  } catch (const mpm_lig::StopRequested& e) {
+    // Thrown on every rank alike, where they agreed to stop.
+    return refuse(e.what(), mpm_lig::kExitStopped);
   } catch (const mpm_lig::ResumeError& e) {
     // Refused on every rank alike, before any file was touched.
     if (root_rank)
@@ -232,6 +299,8 @@ int main(int argc, char** argv) {
                    mpm_lig::printable(context.output_dir, 300).c_str(),
                    mpm_lig::printable(e.what()).c_str());
     return mpm_lig::kExitBadCase;
+  } catch (const mpm_lig::ReplicatedError& e) {
+    return refuse("run failed: " + std::string(e.what()), 1);
   } catch (const mpm_lig::CaseError& e) {
     // Some problems can only be seen at run time (a restart file that is not there).
     mpm_lig::abort_job(case_name + ": " + mpm_lig::printable(e.what()), mpm_lig::kExitBadCase);
