@@ -26,6 +26,15 @@ class ResumeError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+//! A run failure that every rank finds alike, at the same point of the same step, because it
+//! comes from state replicated on all ranks (the MPM's): the job then ends in order (each rank
+//! returns exit code 1, rank 0 prints the message), without MPI_Abort and the launcher's
+//! noise after it.
+class ReplicatedError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 //! Exit code for a case that fails validation (bad input).
 inline constexpr int kExitBadCase = 2;
 

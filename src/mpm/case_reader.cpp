@@ -26,6 +26,13 @@ const std::vector<std::string> kAxes = {"x", "y", "z"};
 //! micrometre (below any grain-scale model) to meshes of a thousand kilometres.
 constexpr double kMinCellLength = 1e-6;
 constexpr double kMaxMeshLength = 1e6;
+//! Bounds on loads and motions, far beyond any geomechanical problem, so that an absurd value
+//! is refused by --validate instead of overflowing in the run: accelerations of 1e4 g
+//! (centrifuges reach a few hundred), speeds of 10 km/s (faster than any wave in soil or
+//! rock), stresses of 1e12 Pa (a thousand times the strength of rock).
+constexpr double kMaxAcceleration = 1e5;
+constexpr double kMaxSpeed = 1e4;
+constexpr double kMaxStress = 1e12;
 
 std::string number(double v) {
   std::ostringstream out;
@@ -48,6 +55,25 @@ std::vector<double> read_vector(const CaseNode& node, const std::string& key, st
     node.fail(key, "expected " + std::to_string(size) + " numbers (one per axis), got " +
                        std::to_string(v.size()));
   }
+  return v;
+}
+
+//! `value` (at `key` of `node`, component `component` or -1 for a scalar) within ±limit.
+void require_within(const CaseNode& node, const std::string& key, double value, double limit,
+                    const char* unit, int component = -1) {
+  if (std::abs(value) <= limit)
+    return;
+  const std::string where = component < 0 ? "" : " (component " + std::to_string(component) + ")";
+  node.fail(key, "must be within ±" + number(limit) + " " + unit + where + ", got " +
+                     number(value));
+}
+
+//! read_vector with every component within ±limit.
+std::vector<double> read_bounded_vector(const CaseNode& node, const std::string& key,
+                                        std::size_t size, double limit, const char* unit) {
+  const std::vector<double> v = read_vector(node, key, size);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    require_within(node, key, v[i], limit, unit, static_cast<int>(i));
   return v;
 }
 
@@ -197,7 +223,7 @@ bool overlap(const Box& a, const Box& b, int dimension) {
 //! A uniform start stress: Voigt xx yy zz xy xz yz [Pa], tension positive; in 2D (plane strain)
 //! xz and yz must be 0.
 Mat3 read_initial_stress(const CaseNode& b, int dimension) {
-  const std::vector<double> v = read_vector(b, "initial_stress", 6);
+  const std::vector<double> v = read_bounded_vector(b, "initial_stress", 6, kMaxStress, "Pa");
   if (dimension == 2 && (v[4] != 0.0 || v[5] != 0.0))
     b.fail("initial_stress", "xz and yz must be 0 in plane strain");
   Mat3 s;
@@ -216,13 +242,13 @@ void read_bodies(const CaseNode& root, MpmCase& c) {
     body.points_per_cell = b.get_or<int>("points_per_cell", 2);
     if (body.points_per_cell < 1 || body.points_per_cell > 6)
       b.fail("points_per_cell", "must be between 1 and 6");
-    body.velocity = b.has("velocity") ? read_vector(b, "velocity", c.dimension)
+    body.velocity = b.has("velocity") ? read_bounded_vector(b, "velocity", c.dimension, kMaxSpeed, "m/s")
                                       : std::vector<double>(c.dimension, 0.0);
     if (b.has("velocity_profile")) {
       const CaseNode p = b.child("velocity_profile");
       p.choice("type", {"axial_mode"});
       body.has_profile = true;
-      body.profile_amplitude = read_vector(p, "amplitude", c.dimension);
+      body.profile_amplitude = read_bounded_vector(p, "amplitude", c.dimension, kMaxSpeed, "m/s");
       body.profile_axis = read_axis(p, "axis", c.dimension);
       body.profile_start = p.get<double>("start");
       body.profile_length = p.positive("length");
@@ -290,6 +316,22 @@ NodeSelector read_nodes(const CaseNode& node, const MpmCase& c) {
   return s;
 }
 
+//! A rotation's fastest node, at the mesh corner farthest from its centre, within kMaxSpeed.
+void require_rotation_speed(const CaseNode& b, const Constraint& k, const MpmCase& c) {
+  double reach = 0.0;
+  for (int corner = 0; corner < (1 << c.dimension); ++corner) {
+    Vec3 r = Vec3::Zero();
+    for (int d = 0; d < c.dimension; ++d)
+      r[d] = c.origin[d] + ((corner >> d) & 1) * c.size[d] - k.center[d];
+    reach = std::max(reach, r.norm());
+  }
+  const double speed = k.angular_velocity.norm() * reach;
+  if (!(speed <= kMaxSpeed))
+    b.fail("angular_velocity", "moves the mesh corner farthest from the centre at " +
+                                   number(speed) + " m/s: at most " + number(kMaxSpeed) +
+                                   " m/s (|angular_velocity| × distance)");
+}
+
 void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
   if (!root.has("boundary_conditions"))
     return;
@@ -301,7 +343,7 @@ void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
     if (type == "traction") {
       Traction t;
       t.points = read_box(b, "points", c.dimension);
-      t.traction = read_vector(b, "traction", c.dimension);
+      t.traction = read_bounded_vector(b, "traction", c.dimension, kMaxStress, "Pa");
       const bool on_a_body = std::any_of(c.bodies.begin(), c.bodies.end(), [&](const Body& body) {
         return overlap(t.points, body.box, c.dimension);
       });
@@ -325,17 +367,19 @@ void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
     if (k.type == Constraint::Type::roller || k.type == Constraint::Type::velocity)
       k.direction = read_axis(b, "direction", c.dimension);
     if (k.type == Constraint::Type::rotation) {
-      k.center = read_vector(b, "center", c.dimension);
+      k.center = read_bounded_vector(b, "center", c.dimension, kMaxMeshLength, "m");
       if (c.dimension == 2) {
         k.angular_velocity.z() = b.get<double>("angular_velocity");
       } else {
         const std::vector<double> w = read_vector(b, "angular_velocity", 3);
         k.angular_velocity = Vec3(w[0], w[1], w[2]);
       }
+      require_rotation_speed(b, k, c);
       k.function = TimeFunction::read(b, "function");
     }
     if (k.type == Constraint::Type::velocity) {
       k.velocity = b.get<double>("velocity");
+      require_within(b, "velocity", k.velocity, kMaxSpeed, "m/s");
       k.function = TimeFunction::read(b, "function");
     }
     c.constraints.push_back(std::move(k));
@@ -372,6 +416,7 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
     if (f.base < c.origin[h] || f.base > c.origin[h] + c.size[h])
       r.fail("base", "lies outside the mesh");
     f.velocity = r.get<double>("velocity");
+    require_within(r, "velocity", f.velocity, kMaxSpeed, "m/s");
     f.function = TimeFunction::read(r, "function");
     f.rough = r.choice("interface", {"rough", "smooth"}) == "rough";
     f.keep_points_out = r.get_or<bool>("keep_points_out", false);
@@ -465,7 +510,8 @@ MpmProblem read_case(const CaseNode& root, const materials::MaterialRegistry& re
     root.fail("dimension", "must be 2 (plane strain) or 3");
   read_analysis(root.child("analysis"), c);
   read_mesh(root.child("mesh"), c);
-  c.gravity = root.has("gravity") ? read_vector(root, "gravity", c.dimension)
+  c.gravity = root.has("gravity")
+                  ? read_bounded_vector(root, "gravity", c.dimension, kMaxAcceleration, "m/s²")
                                   : std::vector<double>(c.dimension, 0.0);
   read_materials(root, registry, c, problem.materials);
   check_cfl(root, c, problem.materials);

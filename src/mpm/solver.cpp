@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/case_error.h"
+
 namespace mpm_lig::mpm {
 namespace {
 
@@ -19,6 +21,22 @@ std::string describe_position(const V& x) {
     s << (d ? ", " : "") << x[d];
   s << ")";
   return s.str();
+}
+
+//! Why a point's deformation increment cannot go to its material ("" when it can).
+std::string increment_problem(const Mat3& dF) {
+  if (!dF.allFinite())
+    return "is not finite; the MPM state has overflowed (time step too large for the loading, "
+           "or a prescribed value out of range?)";
+  const double det = dF.determinant();
+  if (!(det > 0.0)) {
+    std::ostringstream s;
+    s << "inverts the point (det dF = " << det
+      << "): it moved through a neighbour within one step (time step too large for the "
+         "loading, or a point crossing a fixed boundary?)";
+    return s.str();
+  }
+  return "";
 }
 
 //! A solver steps prepared materials only: a DEM material has no packings before prepare().
@@ -151,7 +169,7 @@ void Solver<D>::compute_shape_functions() {
     const Vec xi = (x - origin).cwiseQuotient(cell);
     for (int d = 0; d < D; ++d) {
       if (!(xi[d] >= 0.0 && xi[d] <= grid_.cells(d))) {
-        throw std::runtime_error("material point " + std::to_string(p) + " left the mesh at " +
+        throw ReplicatedError("material point " + std::to_string(p) + " left the mesh at " +
                                  describe_position(x));
       }
     }
@@ -365,15 +383,15 @@ void Solver<D>::update_stress() {
     const auto& points = batch_particles_[m];
     for (std::size_t k = 0; k < points.size(); ++k) {
       batch_increments_[m][k] = increments_[points[k]];
-      // A material (a DEM engine above all) must never be handed NaN or infinity: it would
-      // fail later, and be blamed, for a problem of the MPM's.
-      if (!batch_increments_[m][k].allFinite())
-        throw std::runtime_error(
+      // A material (a DEM engine above all) must never be handed NaN, infinity or an
+      // inverted point: it would fail later, and be blamed, for a problem of the MPM's.
+      const std::string problem = increment_problem(batch_increments_[m][k]);
+      if (!problem.empty())
+        throw ReplicatedError(
             "step " + std::to_string(steps_ + 1) + ": the deformation increment of material " +
             "point " + std::to_string(points[k]) + " at " +
             describe_position(particles_.position[points[k]]) + " (materials[" + std::to_string(m) +
-            "]) is not finite; the MPM state has overflowed (time step too " +
-            "large for the loading, or a prescribed value out of range?)");
+            "]) " + problem);
     }
     materials_[m]->update(batch_points_[m], batch_increments_[m], dt_, batch_stress_[m]);
     for (std::size_t k = 0; k < points.size(); ++k)
