@@ -8,6 +8,7 @@
 namespace mpm_lig::io {
 
 CheckpointFile::CheckpointFile(const std::string& filename, Mode mode) : filename_(filename) {
+  quiet_hdf5_errors();
   file_ = check(mode == Mode::create
                     ? H5Fcreate(filename.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
                     : H5Fopen(filename.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
@@ -123,6 +124,7 @@ std::string CheckpointFile::first_non_finite() const {
 }
 
 void copy_steps_up_to(const std::string& source, const std::string& target, long last_step) {
+  quiet_hdf5_errors();
   H5File in(check(H5Fopen(source.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open '" + source + "'"));
   H5File out(check(H5Fcreate(target.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                    "create '" + target + "'"));

@@ -66,6 +66,7 @@ XdmfStep read_step(hid_t file, const std::string& group_name) {
 }  // namespace
 
 std::vector<XdmfStep> read_field_steps(const std::string& h5_path) {
+  quiet_hdf5_errors();
   H5File file(
       check(H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open '" + h5_path + "'"));
   std::vector<std::pair<long long, XdmfStep>> steps;

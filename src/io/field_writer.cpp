@@ -19,15 +19,6 @@ struct FieldWriter::Open {
 
 namespace {
 
-//! Silence HDF5's own error printing once: failures surface as exceptions from `check`.
-void quiet_hdf5_errors() {
-  static const bool done = [] {
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    return true;
-  }();
-  (void)done;
-}
-
 void write_attribute(hid_t where, const char* name, hid_t mem_type, const void* value) {
   H5Space space(check(H5Screate(H5S_SCALAR), "create a scalar dataspace"));
   H5Attribute attr(check(H5Acreate2(where, name, mem_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),

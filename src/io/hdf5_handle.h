@@ -55,6 +55,16 @@ using H5Attribute = Hdf5Handle<H5Aclose>;
 using H5Type = Hdf5Handle<H5Tclose>;
 
 //! Throws std::runtime_error("HDF5: <what>") when `id` is negative; returns it otherwise.
+//! Silence HDF5's own error printing (its HDF5-DIAG stacks), once per process: every failure
+//! surfaces as an exception from `check` with a message of ours, the last thing printed.
+inline void quiet_hdf5_errors() {
+  static const bool done = [] {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)done;
+}
+
 inline hid_t check(hid_t id, const std::string& what) {
   if (id < 0)
     throw std::runtime_error("HDF5: cannot " + what);
