@@ -78,6 +78,14 @@ def finished(directory, case):
         return False
 
 
+# A run ended by a signal: mpm_lig's clean stop (SIGINT, SIGTERM, SIGHUP), or killed by one.
+STOPPED_CODES = (4, 128 + signal.SIGINT, 128 + signal.SIGTERM, -signal.SIGINT, -signal.SIGTERM)
+
+
+class Stopped(Exception):
+    """A running variant was stopped by a signal (a Ctrl-C that reached it first)."""
+
+
 class Runs:
     """The variants' running processes, so that Ctrl-C can stop them and start no more."""
 
@@ -97,9 +105,12 @@ class Runs:
             return child
 
     def done(self, child, directory):
-        """True when the run ended by itself, False when stop() ended it."""
+        """True when the run ended by itself, False when stop() or a signal ended it (then no
+        further run starts)."""
         with self.lock:
             del self.children[child.pid]
+            if child.returncode in STOPPED_CODES:
+                self.stopping = True
             if self.stopping:
                 self.stopped.append(directory)
             return not self.stopping
@@ -167,10 +178,12 @@ def run_all(study, variants, output, mpm_lig, ranks, jobs):
         for f in concurrent.futures.as_completed(futures):
             v = futures[f]
             code = f.result()
+            if code is None:
+                raise Stopped
             ended += 1
             print(f"{v.name} {v.label(study.knobs)}: "
                   f"{'done' if code == 0 else f'FAILED (exit {code}, see log.txt)'}", flush=True)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, Stopped):
         # Ctrl-C: a second one must not leave runs behind while they are being stopped.
         signal.signal(signal.SIGINT, signal.SIG_IGN)
         pool.shutdown(wait=False, cancel_futures=True)
