@@ -62,7 +62,9 @@ def validate(study, variants, mpm_lig):
             write_case(study.case_of(v), path)
             r = subprocess.run([mpm_lig, "--validate", path], capture_output=True, text=True)
             if r.returncode != 0:
-                reason = (r.stderr.strip() or r.stdout.strip()).replace(path, "case")
+                # The reader's message is its last line (an MPI library may print more).
+                said = (r.stderr.strip() or r.stdout.strip() or f"exit {r.returncode}")
+                reason = said.splitlines()[-1].replace(path, "case")
                 raise InputError(f"variant {v.name} ({v.label(knobs)}): the case reader refuses "
                                  f"it: {reason}")
 
@@ -214,7 +216,7 @@ def main():
                    help="what the picture and the recommendations count as cost: wall x ranks "
                         "(default), the runs' CPU time (robust on a shared machine) or DEM "
                         "particle-steps (deterministic)")
-    p.add_argument("--dpi", type=cli.positive_int, default=150)
+    p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
     study = Study(a.study)
     measures = quantities(study.quantities, study.base, a.study)

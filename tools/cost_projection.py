@@ -43,6 +43,11 @@ def dem_materials(case, where):
 def cell_size(case, where):
     mesh = need(case, "mesh", where)
     size, cells = need(mesh, "size", where + ": mesh"), need(mesh, "cells", where + ": mesh")
+    for key, values in (("size", size), ("cells", cells)):
+        if not isinstance(values, list) or not values or any(
+                isinstance(v, bool) or not isinstance(v, (int, float)) or not v > 0
+                for v in values):
+            raise InputError(f"{where}: mesh.{key}: expected a list of numbers > 0")
     return [s / n for s, n in zip(size, cells)]
 
 

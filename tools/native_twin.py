@@ -283,7 +283,7 @@ def main():
     p.add_argument("--library-run", help="a finished run of CASE with its prepared.restart")
     p.add_argument("--chunk", type=cli.positive_int, default=100,
                    help="DEM steps between servo updates")
-    p.add_argument("--dpi", type=cli.positive_int, default=150)
+    p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
     case = read_json(a.case)
     check_case(case, a.case)

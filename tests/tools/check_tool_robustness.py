@@ -466,7 +466,10 @@ def element_angles(work):
     base = {"analysis": {"type": "element_test", "test": "drained_biaxial"},
             "rve": {"dimension": 2, "grains": 100, "seed": 2,
                     "substeps": {"inertial_number": 1e-3}}}
-    path = study(work, quantities="element", base=base)
+    final_ev = {"column": "e_vol", "reduce": "final"}
+    path = study(work, quantities=["element", final_ev,
+                                   {**final_ev, "name": "e_vol abs", "error": "absolute",
+                                    "targets": [1e-6]}], base=base)
     out = os.path.join(work, "out")
     r = tool("accuracy_cost.py", path, "--output", out, "--mpm-lig", FAKE)
     expect(r.returncode == 0, f"exit {r.returncode}: {r.stderr}")
@@ -494,6 +497,16 @@ def element_angles(work):
            and "10-15 %" in missing["not_reached"], f"not reached: {missing}")
     expect("phi at 10-15 %: not reached" in r.stdout and "before 10-15 %" in r.stdout,
            "the printed table does not say why phi at 10-15 % has no value")
+    # A relative quantity whose reference is within its scatter of zero says so; given an
+    # absolute error it is measured in its unit: e_v = -e1 sin(psi) ... at 5 %, of 1e-6 order.
+    expect("absolute" in q["final e_vol"].get("note", ""), f"no note: {q['final e_vol']}")
+    expect("final e_vol: note:" in r.stdout, "the note not printed")
+    expect("note" not in q["e_vol abs"] and q["e_vol abs"]["error"] == "absolute", "e_vol abs")
+    def final_e_vol(seed):
+        sin_psi = math.sin(math.radians(10 * 1e-4 + 0.02 * (seed - 2)))
+        return 0.05 * 2 * sin_psi / (1 - sin_psi)
+    close(q["e_vol abs"]["noise_floor"], float(np.std([final_e_vol(k) for k in (1, 2, 3)],
+                                                      ddof=1)), "e_vol floor", 1e-6)
     md = open(os.path.join(out, "accuracy_cost.md")).read()
     expect("| phi at 10-15 % | not reached: the run ends at 5 % axial strain" in md,
            "the Markdown table does not say why")

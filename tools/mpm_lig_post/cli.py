@@ -28,7 +28,7 @@ def parser(description, default_png):
     p.add_argument("output_dir", metavar="OUTPUT_DIR", help="the run's output directory")
     p.add_argument("-o", "--output", metavar="PNG",
                    help=f"picture to write (default OUTPUT_DIR/{default_png})")
-    p.add_argument("--dpi", type=positive_int, default=200,
+    p.add_argument("--dpi", type=dpi, default=200,
                    help="picture resolution in dots per inch (default 200, print quality)")
     p.set_defaults(default_png=default_png)
     return p
@@ -52,6 +52,9 @@ non_negative = _number(float, lambda x: x >= 0, "a finite number >= 0")
 finite = _number(float, lambda x: True, "a finite number")
 positive_int = _number(int, lambda x: x > 0, "an integer > 0")
 non_negative_int = _number(int, lambda x: x >= 0, "an integer >= 0")
+# Picture resolution: below 10 nothing is legible, above 2400 a page-sized figure does not fit
+# in memory.
+dpi = _number(int, lambda x: 10 <= x <= 2400, "an integer 10 ... 2400")
 
 
 def output_dir(args):

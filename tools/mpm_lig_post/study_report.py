@@ -146,7 +146,7 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
             info["not_reached"] = reasons[0] if reasons else "no value"
         elif not q.absolute and q.kind == SCALAR and floor is not None and floor >= 0.5:
             info["note"] = (f"the reference's seeds scatter by {100 * floor:.3g} % of its value "
-                            f"({ref:.3g} {q.unit}): near zero a relative error means nothing; "
+                            f"({ref:.3g}{' ' + q.unit if q.unit else ''}): near zero a relative error means nothing; "
                             "give the quantity \"error\": \"absolute\"")
     for g in settings:
         del g["rows"]
@@ -291,11 +291,11 @@ def draw(result, measures, path, dpi):
         if not pts:
             # Say why in the picture, not with an empty panel.
             why = info.get("not_reached", "no variant has a value")
-            ax.text(0.5, 0.5, "not reached:\n" + textwrap.fill(why, 40), ha="center",
+            ax.text(0.5, 0.5, textwrap.fill(why, 40), ha="center",
                     va="center", transform=ax.transAxes, fontsize=9)
             ax.set_xticks([])
             ax.set_yticks([])
-            ax.set_title(f"{q.name}: no value")
+            ax.set_title(f"{q.name}: not reached" if "not_reached" in info else q.name)
             continue
         # Errors drawn in % (relative) or in the quantity's unit (absolute); 0 at floor_y.
         scale, unit = (1.0, q.unit) if q.absolute else (100.0, "%")
@@ -324,8 +324,7 @@ def draw(result, measures, path, dpi):
         ax.set_xlabel({"core_seconds": "cost [core-seconds: wall x ranks]",
                        "cpu_seconds": "cost [CPU core-seconds]",
                        "particle_steps": "cost [DEM particle-steps]"}[axis])
-        ax.set_ylabel(f"{'absolute ' if q.absolute else ''}error of {q.name} [{unit}] "
-                      f"(0 drawn at {scale * floor_y:g})")
+        ax.set_ylabel(f"error of {q.name} [{unit}] (0 drawn at {scale * floor_y:g})")
         ax.set_title(q.name)
         ax.legend(loc="best", frameon=False, fontsize=8)
     for ax in list(axes.flat)[n:]:

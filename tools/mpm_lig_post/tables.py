@@ -23,7 +23,7 @@ def read_text(path):
     except OSError as e:
         raise InputError(f"{path}: cannot be read ({e.strerror})") from None
     try:
-        text = data.decode("utf-8")
+        text = data.decode("utf-8-sig")  # a byte-order mark (a spreadsheet's save) is no text
     except UnicodeDecodeError as e:
         raise InputError(f"{path}: not a text file (byte {e.start} is not UTF-8: damaged or "
                          "not the file the tool expects)") from None
@@ -81,6 +81,8 @@ def read_json(path, required=True):
     if not os.path.exists(path) and not required:
         return None
     text = read_text(path)
+    if not text.strip():
+        raise InputError(f"{path}: empty file (not valid JSON)")
     try:
         content = json.loads(text)
     except json.JSONDecodeError as e:
