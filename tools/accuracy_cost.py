@@ -17,7 +17,7 @@ printed: per variant the quantities, their errors, wall seconds, core-seconds, D
 particle-steps and the rate model's predicted stepping core-seconds with its error.
 Exit 0 when every variant ran, 1 when some failed (reported), 2 on bad input. Ctrl-C (SIGINT)
 stops the running variants and runs no further one: the study is left to --resume (the
-variants finished so far are kept), exit 130.
+variants finished so far are kept), exit 130 (SIGTERM likewise, exit 143).
 """
 from mpm_lig_post.requirements import require
 
@@ -85,7 +85,12 @@ STOPPED_CODES = (4, 128 + signal.SIGINT, 128 + signal.SIGTERM, -signal.SIGINT, -
 
 
 class Stopped(Exception):
-    """A running variant was stopped by a signal (a Ctrl-C that reached it first)."""
+    """A running variant was stopped by a signal (a Ctrl-C that reached it first), or the tool
+    got SIGTERM (a batch job's end): args[0] the signal."""
+
+
+def _terminated(signum, frame):
+    raise Stopped(signum)
 
 
 class Runs:
@@ -175,27 +180,32 @@ def run_all(study, variants, output, mpm_lig, ranks, jobs):
     runs = Runs()
     pool = concurrent.futures.ThreadPoolExecutor(max_workers=jobs)
     ended = 0
+    signal.signal(signal.SIGTERM, _terminated)
     try:
         futures = {pool.submit(run_variant, runs, d, mpm_lig, ranks): v for v, d in todo}
         for f in concurrent.futures.as_completed(futures):
             v = futures[f]
             code = f.result()
             if code is None:
-                raise Stopped
+                raise Stopped(signal.SIGINT)
             ended += 1
             print(f"{v.name} {v.label(study.knobs)}: "
                   f"{'done' if code == 0 else f'FAILED (exit {code}, see log.txt)'}", flush=True)
-    except (KeyboardInterrupt, Stopped):
-        # Ctrl-C: a second one must not leave runs behind while they are being stopped.
+    except (KeyboardInterrupt, Stopped) as e:
+        # A second signal must not leave runs behind while they are being stopped.
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        signum = e.args[0] if isinstance(e, Stopped) else signal.SIGINT
         pool.shutdown(wait=False, cancel_futures=True)
         runs.stop()
         pool.shutdown(wait=True)
         stopped = ", ".join(os.path.basename(d) for d in runs.stopped) or "none"
-        print(f"{cli.tool_name()}: interrupted: {ended} of {len(todo)} variants to run ended, "
+        how = ("interrupted" if signum == signal.SIGINT
+               else f"stopped by {signal.Signals(signum).name}")
+        print(f"{cli.tool_name()}: {how}: {ended} of {len(todo)} variants to run ended, "
               f"stopped: {stopped}; the study in {output} is kept: run the same command with "
               "--resume to continue it", file=sys.stderr)
-        sys.exit(cli.INTERRUPTED)
+        sys.exit(128 + signum)
     pool.shutdown(wait=True)
 
 

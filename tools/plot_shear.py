@@ -29,7 +29,8 @@ import numpy as np  # noqa: E402
 from mpm_lig_post import cli, figures  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
 from mpm_lig_post.fields import FieldFile  # noqa: E402
-from mpm_lig_post.shear import count_cycles, cycle_table, cycles_to_liquefaction, shear_series  # noqa: E402
+from mpm_lig_post.shear import (count_cycles, cycle_table, cycles_to_liquefaction,  # noqa: E402
+                                 shear_series)
 from mpm_lig_post.tables import read_history  # noqa: E402
 
 def print_table(rows):

@@ -380,11 +380,14 @@ def native_twin_restart(work):
 
 def interrupt(work):
     """Ctrl-C during a study's first variant: that run is stopped, no other starts, one line
-    says how to continue, exit 130; --resume then finishes the study."""
+    says how to continue, exit 130 (SIGTERM: 143); --resume then finishes the study."""
     path = study(work)
     out = os.path.join(work, "out")
     log, marker = os.path.join(work, "runs.log"), os.path.join(work, "started")
-    for group in (False, True):  # SIGINT to the tool only, then to its process group (a tty)
+    # SIGINT to the tool only, to its process group (a terminal's Ctrl-C), SIGTERM (a batch
+    # job's end) to the tool.
+    for sig, group, code in ((signal.SIGINT, False, 130), (signal.SIGINT, True, 130),
+                             (signal.SIGTERM, False, 143)):
         shutil.rmtree(out, ignore_errors=True)
         for f in (log, marker):
             if os.path.exists(f):
@@ -400,17 +403,17 @@ def interrupt(work):
         expect(os.path.exists(marker), "the fake mpm_lig never started")
         run_pid = int(open(marker).read())
         if group:
-            os.killpg(child.pid, signal.SIGINT)
+            os.killpg(child.pid, sig)
         else:
-            os.kill(child.pid, signal.SIGINT)
+            os.kill(child.pid, sig)
         try:
             stdout, stderr = child.communicate(timeout=90)
         except subprocess.TimeoutExpired:
             os.killpg(child.pid, signal.SIGKILL)
             raise SystemExit("FAILED: the tool did not stop within 90 s of Ctrl-C")
-        what = "SIGINT to the group" if group else "SIGINT to the tool"
+        what = f"{signal.Signals(sig).name} to the {'group' if group else 'tool'}"
         refused(subprocess.CompletedProcess([], child.returncode, stdout, stderr), what,
-                "interrupted", "--resume", code=130)
+                "interrupted" if sig == signal.SIGINT else "SIGTERM", "--resume", code=code)
         ran = open(log).read().splitlines()
         # Two jobs: the first two variants may both have started; none after Ctrl-C.
         expect(1 <= len(ran) <= 2, f"{what}: variants started: {ran}")

@@ -25,8 +25,9 @@ def missing(packages):
 
 def install_hint(names):
     """How to install the packages `names`: Debian packages or pip with the requirements file."""
-    return (f"install the Debian packages ({'apt-get install ' + ' '.join(DEBIAN[n] for n in names)})"
-            f" or, in a virtual environment, pip install -r {REQUIREMENTS_TXT}")
+    debian = " ".join(DEBIAN[n] for n in names)
+    return (f"install the Debian packages (apt-get install {debian}) or, in a virtual "
+            f"environment, pip install -r {REQUIREMENTS_TXT}")
 
 
 def require(*packages):

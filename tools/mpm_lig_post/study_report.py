@@ -145,8 +145,9 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
             reasons = [r["not_reached"][q.name] for r in refs if q.name in r["not_reached"]]
             info["not_reached"] = reasons[0] if reasons else "no value"
         elif not q.absolute and q.kind == SCALAR and floor is not None and floor >= 0.5:
+            unit = f" {q.unit}" if q.unit else ""
             info["note"] = (f"the reference's seeds scatter by {100 * floor:.3g} % of its value "
-                            f"({ref:.3g}{' ' + q.unit if q.unit else ''}): near zero a relative error means nothing; "
+                            f"({ref:.3g}{unit}): near zero a relative error means nothing; "
                             "give the quantity \"error\": \"absolute\"")
     for g in settings:
         del g["rows"]
