@@ -84,6 +84,8 @@ def writable_file(path, what="output"):
     and it is not a folder itself. Returns the path (None stays None)."""
     if path is None:
         return None
+    if not path:
+        raise InputError(f"the {what}: an empty file name")
     folder = os.path.dirname(os.path.abspath(path))
     if os.path.isdir(path):
         raise InputError(f"{path}: {what} is a folder, not a file")
