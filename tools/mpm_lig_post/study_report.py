@@ -149,6 +149,9 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
             info["note"] = (f"the reference's seeds scatter by {100 * floor:.3g} % of its value "
                             f"({ref:.3g}{unit}): near zero a relative error means nothing; "
                             "give the quantity \"error\": \"absolute\"")
+        short = {r["name"]: r["not_reached"][q.name] for r in done if q.name in r["not_reached"]}
+        if ref is not None and short:
+            info["not_reached_by"] = short
     for g in settings:
         del g["rows"]
     timed = "stepping_cpu_seconds" if axis == "cpu_seconds" else "stepping_core_seconds"
@@ -219,6 +222,8 @@ def print_table(result, measures):
               + ", ".join(f"{t}: {v or 'none'}" for t, v in info["recommended"].items()))
         if "note" in info:
             print(f"{q.name}: note: {info['note']}")
+        for name, why in info.get("not_reached_by", {}).items():
+            print(f"{q.name}: not reached by {name}: {why}")
     if "cost_model" in result:
         m = result["cost_model"]
         print(f"cost model: {m['rate_particle_steps_per_core_second']:.4g} particle-steps per "
