@@ -33,6 +33,8 @@ import subprocess
 import tempfile
 import time
 
+from mpm_lig_post import cli
+
 NATIVE = {"liggghts": ["liggghts"], "lammps": ["lmp", "-nocite"]}
 SPACING = 0.01
 N_SIDE = (7, 7, 8)  # 392 grains
@@ -114,14 +116,15 @@ def run_library(bench, engine, path, steps, chunk, workdir):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = cli.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--build", default=os.path.join(os.path.dirname(__file__), "..", "build"))
-    ap.add_argument("--steps", type=int, default=4000)
-    ap.add_argument("--chunk", type=int, default=100)
-    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--steps", type=cli.positive_int, default=4000)
+    ap.add_argument("--chunk", type=cli.positive_int, default=100)
+    ap.add_argument("--repeats", type=cli.positive_int, default=5)
     ap.add_argument("--engines", default="liggghts,lammps")
     ap.add_argument("--json", default="bench_engine.json")
     args = ap.parse_args()
+    cli.writable_file(args.json, "--json file")
     bench = os.path.abspath(os.path.join(args.build, "bench_engine"))
     workdir = tempfile.mkdtemp(prefix="bench_engine_")
     grains = len(packing())
@@ -173,4 +176,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    cli.run(main)

@@ -20,27 +20,36 @@ element test of the same packing, at two or more confining pressures. From them:
 Prints a table per run and the material block, ready for the case's "materials" list; --json
 writes both. A soil's stiffness grows with pressure: calibrate at the pressure of the region.
 """
-import argparse
-import json
-import math
-import os
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy")
 
-from mpm_lig_post import cli
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.quantities import Run, max_dilatancy, peak_ratio_row, principal_series
-from mpm_lig_post.tables import read_json
+import json  # noqa: E402
+import math  # noqa: E402
+import os  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.quantities import (NotReached, Run, max_dilatancy, peak_ratio_row,  # noqa: E402
+                                     principal_series)
+from mpm_lig_post.tables import need, read_json  # noqa: E402
 
 
 def read_run(directory):
     if not os.path.isdir(directory):
         raise InputError(f"{directory}: no such output directory")
-    summary = read_json(os.path.join(directory, "summary.json"))
+    where = os.path.join(directory, "summary.json")
+    summary = read_json(where)
     for key in ("dimension", "confining_pressure", "preparation"):
         if key not in summary:
-            raise InputError(f"{directory}/summary.json: missing key '{key}' (a drained biaxial "
+            raise InputError(f"{where}: missing key '{key}' (a drained biaxial "
                              "or triaxial element test is needed)")
+    need(summary, "confining_pressure", where, number=True)
+    need(summary["preparation"], "void_ratio", where + ": preparation", number=True)
+    if summary["dimension"] not in (2, 3):
+        raise InputError(f"{where}: dimension: expected 2 or 3, got {summary['dimension']!r}")
     run = Run(directory, {"rve": {"dimension": summary["dimension"]}})
     s1, s3, e1, ev = principal_series(run.history, summary["dimension"])
     return run, summary, s1, s3, e1, ev
@@ -73,15 +82,19 @@ def elastic_secant(summary, s1, e1, ev, small_strain):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    p = cli.ArgumentParser(description=__doc__.split("\n")[1])
     p.add_argument("runs", nargs="+")
-    p.add_argument("--id", type=int, default=2, help="material id of the block (default 2)")
-    p.add_argument("--reference-pressure", type=float,
+    p.add_argument("--id", type=cli.non_negative_int, default=2,
+                   help="material id of the block (default 2)")
+    p.add_argument("--reference-pressure", type=cli.positive,
                    help="Pa: the run for E, nu, psi and density (default the middle pressure)")
-    p.add_argument("--small-strain", type=float, default=1e-3)
-    p.add_argument("--grain-density", type=float, default=2650.0)
+    p.add_argument("--small-strain", type=cli.positive, default=1e-3)
+    p.add_argument("--grain-density", type=cli.positive, default=2650.0)
     p.add_argument("--json")
     a = p.parse_args()
+    cli.writable_file(a.json, "--json file")
+    if a.small_strain >= 1.0:
+        raise InputError(f"--small-strain {a.small_strain:g}: an axial strain below 1 is needed")
     if len(a.runs) < 2:
         raise InputError("give element tests at two or more confining pressures")
     runs = [read_run(d) for d in a.runs]
@@ -107,7 +120,10 @@ def main():
     phi = math.asin(slope)
     cohesion = intercept / math.cos(phi)
     run, summary, *_ = runs[ref]
-    measured_psi = max_dilatancy()(run)
+    try:
+        measured_psi = max_dilatancy()(run)
+    except NotReached:
+        measured_psi = None
     psi = 0.0 if measured_psi is None else min(max(measured_psi, 0.0), math.degrees(phi))
     notes = []
     if measured_psi is None or psi != measured_psi:

@@ -7,14 +7,20 @@ history.csv byte for byte; results.h5 (when present) every dataset and attribute
 every value except timings (keys with 'seconds', 'time_split', 'per_s' or 'rate' in their path).
 Prints what differs and exits 1, or exits 0. With --allow-added, outputs the reference lacks
 (new history columns, datasets, summary keys) are listed but pass: every value the two share
-must still be bit-identical (a new build that writes more against an older one)."""
-import argparse
-import csv
-import json
-import os
-import sys
+must still be bit-identical (a new build that writes more against an older one).
+A missing folder or file, or one that cannot be read (damaged, truncated), exits 2 naming it."""
+from mpm_lig_post.requirements import require
 
-from mpm_lig_post.fields import every_item
+require("numpy", "h5py")
+
+import csv  # noqa: E402
+import io  # noqa: E402
+import os  # noqa: E402
+
+from mpm_lig_post import cli  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.fields import every_item  # noqa: E402
+from mpm_lig_post.tables import read_json, read_text  # noqa: E402
 
 # Keys that say how and where a run was computed, not what: timings and the build's identity.
 TIMING_MARKS = ("seconds", "time_split", "per_s", "rate", "balance", "build")
@@ -31,16 +37,23 @@ def flatten(node, prefix=""):
         yield prefix, node
 
 
+def csv_rows(path, text):
+    rows = list(csv.reader(io.StringIO(text, newline="")))
+    if not rows:
+        raise InputError(f"{path}: empty file (no header row)")
+    return rows
+
+
 def compare_history(reference, other, allow_added, problems, added):
-    ref_text = open(f"{reference}/history.csv", "rb").read()
-    other_text = open(f"{other}/history.csv", "rb").read()
+    ref_path, other_path = os.path.join(reference, "history.csv"), os.path.join(other,
+                                                                               "history.csv")
+    ref_text, other_text = read_text(ref_path), read_text(other_path)
     if ref_text == other_text:
         return
     if not allow_added:
         problems.append("history.csv differs")
         return
-    ref_rows = list(csv.reader(ref_text.decode().splitlines()))
-    other_rows = list(csv.reader(other_text.decode().splitlines()))
+    ref_rows, other_rows = csv_rows(ref_path, ref_text), csv_rows(other_path, other_text)
     ref_cols, other_cols = ref_rows[0], other_rows[0]
     missing = [c for c in ref_cols if c not in other_cols]
     if missing or len(ref_rows) != len(other_rows):
@@ -56,6 +69,9 @@ def compare_history(reference, other, allow_added, problems, added):
 
 
 def compare(reference, other, allow_added=False):
+    for d in (reference, other):
+        if not os.path.isdir(d):
+            raise InputError(f"{d}: no such output directory")
     problems, added = [], []
     compare_history(reference, other, allow_added, problems, added)
     ref_h5, other_h5 = f"{reference}/results.h5", f"{other}/results.h5"
@@ -68,8 +84,8 @@ def compare(reference, other, allow_added=False):
         added += [f"results.h5:{n}" for n in b if n not in a]
         problems += [f"results.h5:{n} differs" for n in a
                      if n in b and (a[n].shape != b[n].shape or a[n].tobytes() != b[n].tobytes())]
-    a = dict(flatten(json.load(open(f"{reference}/summary.json"))))
-    b = dict(flatten(json.load(open(f"{other}/summary.json"))))
+    a = dict(flatten(read_json(os.path.join(reference, "summary.json"))))
+    b = dict(flatten(read_json(os.path.join(other, "summary.json"))))
     for key in sorted(set(a) | set(b)):
         if any(mark in key for mark in TIMING_MARKS):
             continue
@@ -81,7 +97,7 @@ def compare(reference, other, allow_added=False):
 
 
 def main():
-    parser = argparse.ArgumentParser(usage=__doc__)
+    parser = cli.ArgumentParser(usage=__doc__)
     parser.add_argument("reference")
     parser.add_argument("other")
     parser.add_argument("--allow-added", action="store_true")
@@ -92,8 +108,8 @@ def main():
               (" ..." if len(added) > 6 else ""))
     for p in problems:
         print(p)
-    sys.exit(1 if problems else 0)
+    return 1 if problems else 0
 
 
 if __name__ == "__main__":
-    main()
+    cli.run(main)

@@ -13,24 +13,28 @@ where the rate per core counts the stepping phase only (wall time minus packing 
 output), so load imbalance between ranks is included. Preparation is reported separately.
 Exit code 2 on a missing file or key (named in the message).
 """
+from mpm_lig_post.requirements import require
 
-import argparse
-import json
-import math
-import sys
+require("numpy")
 
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.tables import read_json
+import json  # noqa: E402
+import math  # noqa: E402
+
+from mpm_lig_post import cli  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.tables import need, read_json  # noqa: E402
 
 
-def need(node, key, where):
-    if key not in node:
-        raise InputError(f"{where}: missing key '{key}'")
-    return node[key]
+def listed(node, key, where):
+    """node[key], a list of JSON objects."""
+    items = need(node, key, where)
+    if not isinstance(items, list) or not all(isinstance(m, dict) for m in items):
+        raise InputError(f"{where}: {key}: expected a list of objects")
+    return items
 
 
 def dem_materials(case, where):
-    mats = [m for m in need(case, "materials", where) if m.get("type") == "dem_rve"]
+    mats = [m for m in listed(case, "materials", where) if m.get("type") == "dem_rve"]
     if not mats:
         raise InputError(f"{where}: no material of type dem_rve")
     return {m["id"]: m for m in mats}
@@ -39,6 +43,11 @@ def dem_materials(case, where):
 def cell_size(case, where):
     mesh = need(case, "mesh", where)
     size, cells = need(mesh, "size", where + ": mesh"), need(mesh, "cells", where + ": mesh")
+    for key, values in (("size", size), ("cells", cells)):
+        if not isinstance(values, list) or not values or any(
+                isinstance(v, bool) or not isinstance(v, (int, float)) or not v > 0
+                for v in values):
+            raise InputError(f"{where}: mesh.{key}: expected a list of numbers > 0")
     return [s / n for s, n in zip(size, cells)]
 
 
@@ -47,13 +56,14 @@ def case_rves(case, where):
     mats = dem_materials(case, where)
     h = cell_size(case, where)
     out = []
-    for i, body in enumerate(need(case, "bodies", where)):
+    for i, body in enumerate(listed(case, "bodies", where)):
         if body.get("material") not in mats:
             continue
         box = need(body, "box", f"{where}: bodies[{i}]")
         ppc = body.get("points_per_cell", 2)
         points = 1
-        for lo, hi, hk in zip(box["min"], box["max"], h):
+        where_box = f"{where}: bodies[{i}].box"
+        for lo, hi, hk in zip(need(box, "min", where_box), need(box, "max", where_box), h):
             points *= round((hi - lo) / hk) * ppc
         rve = need(mats[body["material"]], "rve", f"{where}: materials")
         out.append((points, need(rve, "grains", f"{where}: materials[].rve")))
@@ -65,14 +75,16 @@ def case_rves(case, where):
 def measure(run_dir, case_path):
     where = f"{run_dir}/summary.json"
     s = read_json(where)
-    wall = need(s, "wall_seconds", where)
-    ranks = need(s, "ranks", where)
-    psteps = need(s, "dem_particle_steps", where)
-    rves = need(s, "rve_count", where)
-    steps = need(s, "mpm_steps", where) + s.get("gravity_stage_steps", 0)
+    wall = need(s, "wall_seconds", where, True)
+    ranks = need(s, "ranks", where, True)
+    psteps = need(s, "dem_particle_steps", where, True)
+    rves = need(s, "rve_count", where, True)
+    steps = need(s, "mpm_steps", where, True) + s.get("gravity_stage_steps", 0)
     split = need(s, "time_split", where)
-    prep = need(split, "preparation", where + ": time_split")
+    prep = need(split, "preparation", where + ": time_split", True)
     stepping = wall - prep - split.get("output", 0.0)
+    if ranks <= 0:
+        raise InputError(f"{where}: ranks: expected a number > 0, got {ranks}")
     if stepping <= 0 or steps <= 0 or rves <= 0:
         raise InputError(f"{where}: no stepping measured (wall {wall} s, {steps} steps)")
     m = {
@@ -118,7 +130,7 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None):
     notes = []
     rves = case_rves(case, target_path)
     if time_step:
-        end = case["analysis"]["end"]
+        end = need(need(case, "analysis", target_path), "end", target_path + ": analysis")
         steps = end.get("steps") or math.ceil(end["time"] / time_step)
         notes.append(f"MPM time step {time_step:.4g} s (given)")
     else:
@@ -156,24 +168,21 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = cli.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--run", nargs="+", action="append", required=True, metavar="DIR [CASE]",
                    help="a measured run's output directory, optionally followed by its case file")
     p.add_argument("target", help="case file of the run to project")
-    p.add_argument("--substeps", type=float, help="DEM sub-steps per RVE and MPM step")
-    p.add_argument("--time-step", type=float, help="MPM time step of the target [s]")
-    p.add_argument("--rate", type=float, help="particle-steps/s per core to assume")
+    p.add_argument("--substeps", type=cli.positive, help="DEM sub-steps per RVE and MPM step")
+    p.add_argument("--time-step", type=cli.positive, help="MPM time step of the target [s]")
+    p.add_argument("--rate", type=cli.positive, help="particle-steps/s per core to assume")
     p.add_argument("--json", help="write the result to this file")
     a = p.parse_args(argv)
-    try:
-        if any(len(r) > 2 for r in a.run):
-            raise InputError("--run takes a directory and at most one case file")
-        runs = [measure(r[0], r[1] if len(r) > 1 else None) for r in a.run]
-        result = {"measured": runs,
-                  "projection": project(runs, a.target, a.substeps, a.time_step, a.rate)}
-    except InputError as e:
-        print(f"cost_projection: {e}", file=sys.stderr)
-        return 2
+    cli.writable_file(a.json, "--json file")
+    if any(len(r) > 2 for r in a.run):
+        raise InputError("--run takes a directory and at most one case file")
+    runs = [measure(r[0], r[1] if len(r) > 1 else None) for r in a.run]
+    result = {"measured": runs,
+              "projection": project(runs, a.target, a.substeps, a.time_step, a.rate)}
     for r in runs:
         line = (f"{r['run']}: {r['rve_count']} RVEs, {r['mpm_steps']} steps, {r['ranks']} ranks, "
                 f"{r['particle_steps_per_s_per_core']:.4g} particle-steps/s per core, "
@@ -192,8 +201,7 @@ def main(argv=None):
     if a.json:
         with open(a.json, "w") as f:
             json.dump(result, f, indent=2)
-    return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    cli.run(main)

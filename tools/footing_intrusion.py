@@ -13,13 +13,17 @@ traction) at each step where the count changes (or every N-th step with --every)
 q/q_s and the count against s/B. Fields must be written often enough to see events
 (output.every of a few tens of steps).
 """
-import os
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "h5py", "matplotlib")
 
-from mpm_lig_post import cli, figures, footing
-from mpm_lig_post.fields import FieldFile
-from mpm_lig_post.tables import read_history, read_json, require_columns
+import os  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures, footing  # noqa: E402
+from mpm_lig_post.fields import FieldFile  # noqa: E402
+from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
 
 
 def footing_of(case_path):
@@ -42,7 +46,7 @@ def points_inside(positions, centre, half_width, base):
 def main():
     p = cli.parser(__doc__.split("\n")[0], "intrusion.png")
     p.add_argument("--case", required=True, help="the run's case file (its first footing)")
-    p.add_argument("--every", type=int, default=0,
+    p.add_argument("--every", type=cli.non_negative_int, default=0,
                    help="print every N-th output step as well as every change (default: changes)")
     args = p.parse_args()
     directory = cli.output_dir(args)

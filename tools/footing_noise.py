@@ -15,15 +15,18 @@ the surface traction); the footing's speed is the settlement's mean rate in hist
 Pure FLIP (analysis.flip 1) keeps velocity patterns the grid cannot see; their speeds far above
 the footing's are what this table shows (docs/footing_dem_e0187.md).
 """
-import argparse
-import os
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "h5py")
 
-from mpm_lig_post import cli, footing
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.fields import FieldFile
-from mpm_lig_post.tables import read_history, read_json, require_columns
+import os  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, footing  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.fields import FieldFile  # noqa: E402
+from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
 
 
 def footing_scales(case_path):
@@ -86,18 +89,14 @@ def run_row(directory, width, surcharge, dimension, start, free_below):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = cli.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("runs", nargs="+", help="output folders of footing runs")
     p.add_argument("--case", required=True, help="the runs' case file (B and q_s)")
-    p.add_argument("--from", dest="start", type=float, default=0.2,
+    p.add_argument("--from", dest="start", type=cli.finite, default=0.2,
                    help="first s/B of the outputs looked at (default 0.2)")
-    p.add_argument("--free-below", type=float, default=1e3,
+    p.add_argument("--free-below", type=cli.positive, default=1e3,
                    help="mean stress [Pa] below which a point counts as carrying nothing (default 1e3)")
     args = p.parse_args()
-    if not np.isfinite(args.start):
-        raise InputError(f"--from {args.start}: not a finite s/B")
-    if not (np.isfinite(args.free_below) and args.free_below > 0.0):
-        raise InputError(f"--free-below {args.free_below}: not a positive stress in Pa")
     width, surcharge, dimension = footing_scales(args.case)
     print(f"speeds in m/s over the outputs from s/B = {args.start:g}; q in q_s = {surcharge:g} Pa")
     print(f"{'s/B':>6} {'p95 lo':>6} {'p95 hi':>6} {'fastest':>7} {'/ v_f':>6} {'free %':>6} "

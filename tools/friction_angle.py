@@ -12,16 +12,19 @@ per-run mobilised angles are printed too. --residual A B adds each run's residua
 mean mobilised angle over the rows whose axial strain (the most compressive of e_xx, e_yy,
 e_zz, positive in compression) lies in [A, B], and the mean over the runs (for a softening soil, e.g. 0.10 0.15).
 """
-import argparse
-import json
-import math
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy")
 
-from mpm_lig_post import cli
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.quantities import peak_ratio_row, principal_stresses
-from mpm_lig_post.tables import read_history, read_json, require_columns
+import json  # noqa: E402
+import math  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.quantities import peak_ratio_row, principal_stresses  # noqa: E402
+from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
 
 STRESS_COLUMNS = ("s_xx", "s_yy", "s_zz", "s_xy", "s_xz", "s_yz")
 
@@ -59,12 +62,16 @@ def residual_angle(run_dir, low, high):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    parser = cli.ArgumentParser(description=__doc__.split("\n")[1])
     parser.add_argument("runs", nargs="+")
-    parser.add_argument("--residual", nargs=2, type=float, metavar=("A", "B"),
+    parser.add_argument("--residual", nargs=2, type=cli.non_negative, metavar=("A", "B"),
                         help="also the mean mobilised angle over axial strains in [A, B]")
     parser.add_argument("--json", help="write the result here")
     args = parser.parse_args()
+    cli.writable_file(args.json, "--json file")
+    if args.residual and not args.residual[0] < args.residual[1] < 1.0:
+        raise InputError(f"--residual {args.residual[0]:g} {args.residual[1]:g}: expected "
+                         "0 <= A < B < 1 (axial strains)")
     s_points, t_points, rows = [], [], []
     for run in args.runs:
         summary, (ratio, s1, s3) = peak_state(run)

@@ -14,6 +14,8 @@ import os
 import subprocess
 import sys
 
+from mpm_lig_post import cli
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 HARD = os.path.join(HERE, "..", "tests", "hard")
 CHECK_MPM = os.path.join(HARD, "check_mpm_hard.py")
@@ -77,13 +79,15 @@ def run_case(exe, work, name, case, check, edit, long):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap = cli.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("mpm_lig")
     ap.add_argument("work")
     ap.add_argument("--long", action="store_true", help="the longer variants")
     ap.add_argument("--only", nargs="*", help="case names (default: all)")
     ap.add_argument("--json", help="write the table as JSON too")
     a = ap.parse_args()
+    cli.writable_file(a.json, "--json file")
+    cli.writable_folder(a.work, "work folder")
     names = [c[0] for c in CASES]
     unknown = [n for n in (a.only or []) if n not in names]
     if unknown:
@@ -105,4 +109,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    cli.run(main)

@@ -19,23 +19,29 @@ its prepared.restart); then DIR/native/in.twin is written and run with liggghts:
   over (K x chunk time), K the library run's measured servo_stiffness (SERVO_P, SERVO_I).
 Output: DIR/native/history.csv (the element-test columns), DIR/twin.json and DIR/twin.png
 (deviator and volumetric strain over axial strain, both paths), and a table: peak and 10-15 %
-mobilised friction angles, largest dilatancy angle and the RMS difference of the curves.
-Exit 2 on bad input (not an element test, sheared box, missing file), 1 when a run fails.
+mobilised friction angles, largest dilatancy angle (differences in degrees) and the RMS
+difference of the curves (relative to the library's largest deviator).
+Exit 2 on bad input (not an element test, sheared box, missing file, a prepared.restart that
+liggghts cannot read), 1 when a run fails (its error line and log named on stderr).
 """
-import argparse
-import json
-import math
-import os
-import shutil
-import subprocess
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "matplotlib")
 
-from mpm_lig_post import cli, figures
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.quantities import PRESETS, Run, principal_series
-from mpm_lig_post.tables import read_history, read_json
-from mpm_lig_post.tradeoff import error
+import json  # noqa: E402
+import math  # noqa: E402
+import os  # noqa: E402
+import shutil  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.quantities import PRESETS, Run, principal_series  # noqa: E402
+from mpm_lig_post.tables import need, read_history, read_json, read_text  # noqa: E402
+from mpm_lig_post.tradeoff import error  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TEMPLATES = os.path.join(HERE, "..", "lmp_inputs", "liggghts")
@@ -43,6 +49,10 @@ TESTS = ("isotropic_compression", "drained_biaxial", "drained_triaxial")
 # Servo gains on the lateral strain rate, in units of (stress error) / (K x chunk time):
 # proportional, and integral (the steady widening a dilating packing needs).
 SERVO_P, SERVO_I = 0.5, 0.1
+
+
+class RunFailed(Exception):
+    """mpm_lig or liggghts failed: exit code 1."""
 
 
 def render(name, values, flags):
@@ -110,7 +120,7 @@ def twin_input(case, library, chunk):
     radius = rve["radius"]
     mean_radius = 0.5 * (radius["min"] + radius["max"])
     thickness = rve.get("thickness", 2.0 * mean_radius) if dim == 2 else 1.0
-    dt = summary["time_step"]
+    dt = need(summary, "time_step", os.path.join(library, "summary.json"), number=True)
     axes = "xyz"[:dim]
     test = case["analysis"]["test"]
     axial = axes[-1]
@@ -181,7 +191,7 @@ def native_history(log_text, dim):
     rows = np.array([[float(v) for v in line.split()[1:]] for line in log_text.splitlines()
                      if line.startswith("TWIN ")])
     if len(rows) < 2:
-        raise RuntimeError("the native run printed no states (see its log)")
+        raise RunFailed("the native run printed no states (see its log)")
     lengths = rows[:, 1:4]
     strain = np.log(lengths / lengths[0])
     if dim == 2:
@@ -211,15 +221,15 @@ def write_history(table, path):
 def compare(case, library, native):
     measures = PRESETS["element"]()
     runs = {"library": Run(library, case), "native": Run(native, case)}
-    values = {name: {q.name: q.measure(run) for q in measures} for name, run in runs.items()}
+    values = {name: {q.name: q.value(run) for q in measures} for name, run in runs.items()}
     rows = []
     for q in measures:
         lib, nat = values["library"][q.name], values["native"][q.name]
-        diff = error(q.kind, nat, lib)
         rows.append({"quantity": q.name, "unit": q.unit,
                      "library": lib if q.kind == "scalar" else None,
                      "native": nat if q.kind == "scalar" else None,
-                     "relative_difference": diff})
+                     "difference": error(q.kind, nat, lib, q.absolute),
+                     "difference_unit": q.unit if q.absolute else "relative"})
     return rows, values
 
 
@@ -240,28 +250,49 @@ def draw(values, volumetric, path, dpi, title):
     figures.save(fig, path, dpi)
 
 
-def run_command(command, cwd, log):
+def error_line(log):
+    """The first line of an engine's or mpm_lig's log that says what went wrong, or ''."""
+    try:
+        lines = read_text(log).splitlines()
+    except InputError:
+        return ""
+    return next((ln.strip() for ln in lines if ln.lstrip().startswith("ERROR")
+                 or ": error:" in ln), "")
+
+
+def run_command(command, cwd, log, restart=None):
+    """Run `command` in `cwd` with its output in `log`. A failure is RunFailed with the log's
+    error line; liggghts failing to read `restart` is the restart's fault (InputError)."""
     with open(log, "w") as f:
         code = subprocess.run(command, cwd=cwd, stdout=f, stderr=subprocess.STDOUT).returncode
     if code != 0:
-        raise RuntimeError(f"{' '.join(command)} failed (exit {code}): see {log}")
+        line = error_line(log)
+        if restart and "restart" in line.lower():
+            raise InputError(f"{restart}: {os.path.basename(command[0])} cannot read it "
+                             f"({line}): a damaged or truncated restart file (log: {log})")
+        raise RunFailed(f"{' '.join(command)} failed (exit {code})"
+                        + (f": {line}" if line else "") + f"; see {log}")
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    p = cli.ArgumentParser(description=__doc__.split("\n")[1])
     p.add_argument("case", metavar="CASE.json")
     p.add_argument("--output", required=True)
     p.add_argument("--mpm-lig", default=os.path.join(HERE, "..", "build", "mpm_lig"))
     p.add_argument("--liggghts", default=shutil.which("liggghts") or "liggghts")
     p.add_argument("--library-run", help="a finished run of CASE with its prepared.restart")
-    p.add_argument("--chunk", type=int, default=100, help="DEM steps between servo updates")
-    p.add_argument("--dpi", type=int, default=150)
+    p.add_argument("--chunk", type=cli.positive_int, default=100,
+                   help="DEM steps between servo updates")
+    p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
     case = read_json(a.case)
     check_case(case, a.case)
-    if a.chunk < 1:
-        raise InputError(f"--chunk must be >= 1, got {a.chunk}")
+    cli.writable_folder(a.output)
+    if not shutil.which(a.liggghts):
+        raise InputError(f"{a.liggghts}: no liggghts executable (give --liggghts PATH)")
     library = a.library_run or os.path.join(a.output, "library")
+    if a.library_run and not os.path.isdir(a.library_run):
+        raise InputError(f"{a.library_run}: no such run folder (--library-run)")
     if not a.library_run:
         if not os.access(a.mpm_lig, os.X_OK):
             raise InputError(f"{a.mpm_lig}: no mpm_lig executable (give --mpm-lig)")
@@ -271,22 +302,25 @@ def main():
     for name in ("summary.json", "history.csv", "prepared.restart"):
         if not os.path.isfile(os.path.join(library, name)):
             raise InputError(f"{library}: missing {name} (the case must save its prepared packing)")
+    restart = os.path.join(library, "prepared.restart")
+    if os.path.getsize(restart) == 0:
+        raise InputError(f"{restart}: empty file (a damaged or unfinished restart)")
     native = os.path.join(a.output, "native")
     os.makedirs(native, exist_ok=True)
     script, chunks = twin_input(case, library, a.chunk)
     with open(os.path.join(native, "in.twin"), "w") as f:
         f.write(script)
     run_command([a.liggghts, "-in", "in.twin", "-log", "log.twin", "-echo", "none"], native,
-                os.path.join(native, "screen.txt"))
+                os.path.join(native, "screen.txt"), restart=restart)
     dim = case["rve"].get("dimension", 3)
-    table = native_history(open(os.path.join(native, "log.twin")).read(), dim)
+    table = native_history(read_text(os.path.join(native, "log.twin")), dim)
     write_history(table, os.path.join(native, "history.csv"))
     rows, values = compare(case, library, native)
     print(f"{'quantity':20s} {'library':>10s} {'native':>10s} {'difference':>10s}")
     for r, q in zip(rows, PRESETS["element"]()):
         lib, nat = (("curve" if q.kind != "scalar" else "-") if v is None else f"{v:.3f}"
                     for v in (r["library"], r["native"]))
-        diff = "-" if r["relative_difference"] is None else f"{100 * r['relative_difference']:.2f} %"
+        diff = q.error_text(r["difference"])
         print(f"{r['quantity']:20s} {lib:>10s} {nat:>10s} {diff:>10s}")
     with open(os.path.join(a.output, "twin.json"), "w") as f:
         json.dump({"case": a.case, "chunk": a.chunk, "chunks": chunks, "comparison": rows}, f,
@@ -302,6 +336,6 @@ def main():
 if __name__ == "__main__":
     try:
         cli.run(main)
-    except RuntimeError as e:
-        print(f"native_twin.py: {e}")
+    except RunFailed as e:
+        print(f"{cli.tool_name()}: {e}", file=sys.stderr)
         raise SystemExit(1)

@@ -16,14 +16,18 @@ an upper bound of what a continuum start (materials[].start_as_continuum) with s
 threshold E could have saved on this run (a point that switches later redoes that strain in
 its catch-up: only points that never pass E save their work).
 """
-import os
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "h5py", "matplotlib")
 
-from mpm_lig_post import cli, figures
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.fields import FieldFile
-from mpm_lig_post.tables import read_json
+import os  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.fields import FieldFile  # noqa: E402
+from mpm_lig_post.tables import read_json  # noqa: E402
 
 PREFIX = "dem_particle_steps_m"
 
@@ -74,10 +78,10 @@ def top_shares(work, fractions=(0.01, 0.05, 0.10, 0.25)):
 
 def main():
     p = cli.parser(__doc__.split("\n")[0], "dem_work.png")
-    p.add_argument("--step", type=int, help="output step (default: the last)")
+    p.add_argument("--step", type=cli.non_negative_int, help="output step (default: the last)")
     p.add_argument("--initial", action="store_true",
                    help="draw the points where they started (first output step)")
-    p.add_argument("--below-strain", type=float, nargs="+", default=[], metavar="E",
+    p.add_argument("--below-strain", type=cli.positive, nargs="+", default=[], metavar="E",
                    help="print the work done while each point's |strain| was below E")
     args = p.parse_args()
     directory = cli.output_dir(args)

@@ -4,11 +4,15 @@
 Four panels from RUN_DIR/history.csv: q against the test's strain (axial, shear or per-axis),
 stress ratio q/p, volumetric strain (drained) or p (undrained/isotropic), and void ratio.
 """
-import os
+from mpm_lig_post.requirements import require
 
-import matplotlib
+require("numpy", "matplotlib")
 
-matplotlib.use("Agg")
+import os  # noqa: E402
+
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 from mpm_lig_post import cli  # noqa: E402

@@ -12,14 +12,18 @@ without the triangles that span gaps larger than the points' own size). 2D: the 
 middle of the body (x-z plane). The colour scale of eps_q ends at --eq-max (default: its 99th
 percentile, so a few extreme points at a footing edge do not wash out the rest).
 """
-import os
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "h5py", "matplotlib")
 
-from mpm_lig_post import cli, figures
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.fields import FieldFile
-from mpm_lig_post.tables import read_json
+import os  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.fields import FieldFile  # noqa: E402
+from mpm_lig_post.tables import read_json  # noqa: E402
 
 AXES = "xyz"
 
@@ -94,10 +98,10 @@ def contour(fig, ax, tri, values, label, cmap, vmax=None):
 
 def main():
     p = cli.parser(__doc__.split("\n")[0], "fields.png")
-    p.add_argument("--step", type=int, help="output step (default: the last)")
+    p.add_argument("--step", type=cli.non_negative_int, help="output step (default: the last)")
     p.add_argument("--slice", dest="slice_spec", metavar="AXIS=VALUE",
                    help="3D: plane of the section (default y through the middle)")
-    p.add_argument("--eq-max", type=float, help="upper end of the eps_q colour scale")
+    p.add_argument("--eq-max", type=cli.positive, help="upper end of the eps_q colour scale")
     args = p.parse_args()
     directory = cli.output_dir(args)
     fields = FieldFile(os.path.join(directory, "results.h5"))

@@ -16,14 +16,18 @@ N_q = tan^2(pi/4 + phi/2) exp(pi tan phi) for --phi DEG (over q_s) and Prandtl's
 --compare draws other runs of the same footing (same B and normaliser) as dashed lines, e.g. a
 continuum run on the same mesh; --window A B prints each curve's mean over s/B in [A, B] too.
 """
-import math
-import os
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "matplotlib")
 
-from mpm_lig_post import cli, figures, footing
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.tables import read_history, read_json, require_columns
+import math  # noqa: E402
+import os  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures, footing  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
 
 
 def vesic_nq(phi_deg):
@@ -57,18 +61,22 @@ def report_window(label, settlement, y, window):
 def main():
     p = cli.parser(__doc__.split("\n")[0], "footing.png")
     p.add_argument("--case", help="the run's case file (footing width, surcharge, c_u)")
-    p.add_argument("--width", type=float, help="footing width B [m]")
+    p.add_argument("--width", type=cli.positive, help="footing width B [m]")
     norm = p.add_mutually_exclusive_group()
-    norm.add_argument("--surcharge", type=float, help="surcharge q_s [Pa]: plot q/q_s")
-    norm.add_argument("--cu", type=float, help="undrained strength c_u [Pa]: plot q/c_u")
-    p.add_argument("--phi", type=float, help="friction angle phi' [deg]: draw Vesic's N_q")
+    norm.add_argument("--surcharge", type=cli.positive, help="surcharge q_s [Pa]: plot q/q_s")
+    norm.add_argument("--cu", type=cli.positive, help="undrained strength c_u [Pa]: plot q/c_u")
+    p.add_argument("--phi", type=cli.positive, help="friction angle phi' [deg]: draw Vesic's N_q")
     p.add_argument("--prandtl", action="store_true", help="draw Prandtl's 2 + pi")
     p.add_argument("--label", default="MPM", help="legend text of OUTPUT_DIR's curve")
     p.add_argument("--compare", nargs=2, action="append", default=[], metavar=("DIR", "LABEL"),
                    help="another run's output directory and its legend text (repeatable)")
-    p.add_argument("--window", nargs=2, type=float, metavar=("A", "B"),
+    p.add_argument("--window", nargs=2, type=cli.non_negative, metavar=("A", "B"),
                    help="print each curve's mean over s/B in [A, B]")
     args = p.parse_args()
+    if args.phi is not None and args.phi >= 90:
+        raise InputError(f"--phi {args.phi:g}: a friction angle below 90 deg is needed")
+    if args.window and not args.window[0] < args.window[1]:
+        raise InputError(f"--window {args.window[0]:g} {args.window[1]:g}: expected A < B")
     directory = cli.output_dir(args)
     path = os.path.join(directory, "history.csv")
     table = read_history(path)

@@ -13,15 +13,19 @@ With several RVEs (an MPM run's output.rve_snapshots: snapshots/point_NNNNNN/, N
 material point, the increment the MPM step) --rve names the folder, by its path under
 OUTPUT_DIR or by its own name.
 """
-import glob
-import os
-import re
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "matplotlib")
 
-from mpm_lig_post import cli, figures
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.vtk_legacy import read_polydata
+import glob  # noqa: E402
+import os  # noqa: E402
+import re  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.vtk_legacy import read_polydata  # noqa: E402
 
 AXES = {"x": 0, "y": 1, "z": 2}
 MAX_WIDTH = 4.0  # line width [pt] of the largest force
@@ -119,7 +123,7 @@ def draw_panel(ax, snap, plane, force_max, title):
 
 def main():
     p = cli.parser(__doc__.split("\n")[0], "force_chains.png")
-    p.add_argument("--steps", nargs=2, type=int, metavar=("A", "B"),
+    p.add_argument("--steps", nargs=2, type=cli.non_negative_int, metavar=("A", "B"),
                    help="increments of the two snapshots (default: first and last)")
     p.add_argument("--rve", help="snapshot folder, relative to OUTPUT_DIR, when there are several")
     p.add_argument("--plane", choices=["xy", "xz", "yz"],

@@ -18,15 +18,20 @@ effective stress p' = -(s_xx + s_yy)/2 over time, coloured by its initial height
 each point's height, final p'/p0 and largest |gamma| = 2 |e_xy| (log strain) in the run: in a
 boundary-value problem the points need not follow the same path (localisation).
 """
-import os
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "h5py", "matplotlib")
 
-from mpm_lig_post import cli, figures
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.fields import FieldFile
-from mpm_lig_post.shear import count_cycles, cycle_table, cycles_to_liquefaction, shear_series
-from mpm_lig_post.tables import read_history
+import os  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.fields import FieldFile  # noqa: E402
+from mpm_lig_post.shear import (count_cycles, cycle_table, cycles_to_liquefaction,  # noqa: E402
+                                 shear_series)
+from mpm_lig_post.tables import read_history  # noqa: E402
 
 def print_table(rows):
     print(f"{'cycle':>5} {'gamma_a [%]':>11} {'|tau|max [kPa]':>14} {'G_sec [MPa]':>11} "

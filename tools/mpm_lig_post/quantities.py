@@ -7,6 +7,10 @@ dilatancy angle sin(psi) = -d e_v / (2 d e_1 - d e_v) (plane strain and axisymme
 from straight-line fits of e_v over sliding 2 % windows of e_1; the deviator q over axial strain.
 Cyclic simple shear: the first cycle that ends with p' < 0.1 p'_0 and G_sec of every cycle.
 Footing: mean q/q_s over s/B in [0.1, 0.4] and the peak q/q_s.
+
+Angles are compared by their absolute difference in degrees (Quantity.absolute): a relative
+error of an angle near zero (the dilatancy angle of a loose packing, a friction angle early in
+a test) means nothing. A measure that the run does not reach raises NotReached with the reason.
 """
 import math
 import os
@@ -19,13 +23,43 @@ from .shear import count_cycles, cycle_table, shear_series
 from .tables import read_history, require_columns
 
 SCALAR, CURVE, SERIES = "scalar", "curve", "series"
+# The errors the study recommends settings for: relative ones, and angles' in degrees (about
+# 1, 4 and 12 % of a 25 deg friction angle, but the same for a dilatancy angle near zero).
+RELATIVE_TARGETS = (0.01, 0.05, 0.15)
+ANGLE_TARGETS = (0.25, 1.0, 3.0)
+
+
+class NotReached(Exception):
+    """The run does not reach the quantity (too short for its window, never liquefied): why."""
 
 
 class Quantity:
-    """name, kind (scalar | curve | series), unit and measure(run) -> value (None: not reached)."""
+    """name, kind (scalar | curve | series), unit and measure(run) -> value (raises NotReached
+    with the reason when the run does not reach it). absolute: its error is |Q - Q_ref| in
+    `unit` (angles, anything whose reference can be near zero), otherwise relative."""
 
-    def __init__(self, name, kind, unit, measure):
+    def __init__(self, name, kind, unit, measure, absolute=False, targets=RELATIVE_TARGETS):
         self.name, self.kind, self.unit, self.measure = name, kind, unit, measure
+        self.absolute, self.targets = absolute, tuple(targets)
+
+    def error_text(self, e, signed=False):
+        """An error of this quantity for a table: '1.2 %' or '0.31 deg' ('-': none)."""
+        if e is None:
+            return "-"
+        if self.absolute:
+            return f"{e:{'+' if signed else ''}.3g} {self.unit}".rstrip()
+        return f"{100 * e:{'+' if signed else ''}.3g} %"
+
+    def evaluate(self, run):
+        """(value, None), or (None, why) when the run does not reach the quantity."""
+        try:
+            return self.measure(run), None
+        except NotReached as e:
+            return None, str(e)
+
+    def value(self, run):
+        """The value, None when the run does not reach it."""
+        return self.evaluate(run)[0]
 
 
 class Run:
@@ -55,7 +89,8 @@ def principal_stresses(h, dimension):
     names = ["xx", "yy", "zz", "xy", "xz", "yz"]
     missing = [f"s_{n}" for n in names if f"s_{n}" not in h]
     if missing:
-        raise InputError(f"history.csv: missing column '{missing[0]}' (not an element test?)")
+        raise InputError(f"{getattr(h, 'path', 'history.csv')}: missing column '{missing[0]}' "
+                         "(not an element test?)")
     s = np.zeros((len(h["s_xx"]), 3, 3))
     for (i, j), n in zip([(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)], names):
         s[:, i, j] = s[:, j, i] = -h[f"s_{n}"]
@@ -103,7 +138,10 @@ def window_friction(lo, hi):
     def measure(run):
         phi, e1, _ = _mobilised(run)
         inside = (e1 >= lo) & (e1 <= hi)
-        return float(np.mean(phi[inside])) if inside.any() else None
+        if not inside.any():
+            raise NotReached(f"the run ends at {100 * e1.max():.3g} % axial strain, before "
+                             f"{100 * lo:g}-{100 * hi:g} %")
+        return float(np.mean(phi[inside]))
     return measure
 
 
@@ -119,6 +157,9 @@ def max_dilatancy(window=0.02):
             sin_psi = -slope / (2.0 - slope)
             psi = math.degrees(math.asin(max(-1.0, min(1.0, sin_psi))))
             best = psi if best is None else max(best, psi)
+        if best is None:
+            raise NotReached(f"the run's {100 * e1[-1]:.3g} % axial strain holds no "
+                             f"{100 * window:g} % window of three rows")
         return best
     return measure
 
@@ -143,7 +184,9 @@ def _cycles(run):
 def liquefaction_cycle(run):
     numbers, p_end, _, p0 = _cycles(run)
     below = np.flatnonzero(p_end < 0.1 * p0)
-    return float(numbers[below[0]]) if below.size else None
+    if not below.size:
+        raise NotReached(f"p' stays above 0.1 p'_0 over the {len(numbers)} cycles run")
+    return float(numbers[below[0]])
 
 
 def secant_moduli(run):
@@ -167,7 +210,7 @@ def plateau(lo, hi):
         s, y = _footing_curve(run)
         inside = (s >= lo) & (s <= hi)
         if not inside.any() or s.max() < hi:
-            return None
+            raise NotReached(f"the run ends at s/B = {s.max():.3g}, before {lo:g}-{hi:g}")
         return float(np.mean(y[inside]))
     return measure
 
@@ -176,7 +219,9 @@ def footing_peak(hi):
     def measure(run):
         s, y = _footing_curve(run)
         inside = s <= hi
-        return float(np.max(y[inside])) if inside.any() else None
+        if not inside.any():
+            raise NotReached(f"no row with s/B <= {hi:g}")
+        return float(np.max(y[inside]))
     return measure
 
 
@@ -187,10 +232,23 @@ REDUCERS = {"max": np.max, "min": np.min, "mean": np.mean, "final": lambda v: v[
 
 def column_quantity(spec, where):
     """{"column": NAME, "reduce": max|min|mean|final, "x": COLUMN, "range": [a, b]} -> scalar;
-    {"column": NAME, "curve": X_COLUMN} -> the whole curve over X (RMS error)."""
+    {"column": NAME, "curve": X_COLUMN} -> the whole curve over X (RMS error). A scalar whose
+    reference can be near zero takes "error": "absolute" with "unit" and "targets" (the
+    errors to recommend settings for, in that unit)."""
     if not isinstance(spec, dict) or "column" not in spec:
         raise InputError(f"{where}: expected an object with 'column'")
     name = spec["column"]
+    mode = spec.get("error", "relative")
+    if mode not in ("relative", "absolute"):
+        raise InputError(f"{where}.error: expected 'relative' or 'absolute', got '{mode}'")
+    targets = spec.get("targets", list(RELATIVE_TARGETS) if mode == "relative" else None)
+    if not isinstance(targets, list) or not targets or any(
+            isinstance(t, bool) or not isinstance(t, (int, float)) or not t > 0 for t in targets):
+        raise InputError(f"{where}.targets: expected a list of errors > 0"
+                         + (" in the column's unit (an absolute error needs them)"
+                            if mode == "absolute" else ""))
+    if mode == "absolute" and "curve" in spec:
+        raise InputError(f"{where}.error: a curve's error is relative to its largest value")
     if "curve" in spec:
         x = spec["curve"]
         return Quantity(spec.get("name", f"{name}({x})"), CURVE, "",
@@ -208,18 +266,20 @@ def column_quantity(spec, where):
             (x,) = run.columns(spec["x"])
             inside = (x >= window[0]) & (x <= window[1])
             if not inside.any():
-                return None
+                raise NotReached(f"no row with {spec['x']} in {window} (the run's "
+                                 f"{spec['x']}: {x.min():.4g} ... {x.max():.4g})")
             y = y[inside]
         return float(REDUCERS[reduce](y))
     label = spec.get("name", f"{reduce} {name}" + (f" ({spec['x']} in {window})" if window else ""))
-    return Quantity(label, SCALAR, spec.get("unit", ""), measure)
+    return Quantity(label, SCALAR, spec.get("unit", ""), measure, mode == "absolute", targets)
 
 
 PRESETS = {
     "element": lambda: [
-        Quantity("peak phi", SCALAR, "deg", peak_friction),
-        Quantity("phi at 10-15 %", SCALAR, "deg", window_friction(0.10, 0.15)),
-        Quantity("max psi", SCALAR, "deg", max_dilatancy()),
+        Quantity("peak phi", SCALAR, "deg", peak_friction, True, ANGLE_TARGETS),
+        Quantity("phi at 10-15 %", SCALAR, "deg", window_friction(0.10, 0.15), True,
+                 ANGLE_TARGETS),
+        Quantity("max psi", SCALAR, "deg", max_dilatancy(), True, ANGLE_TARGETS),
         Quantity("q curve", CURVE, "Pa", deviator_curve)],
     "cyclic": lambda: [
         Quantity("liquefaction cycle", SCALAR, "", liquefaction_cycle),

@@ -3,18 +3,18 @@ write them: the printed table, accuracy_cost.json, .csv, .md (Markdown table) an
 import csv
 import json
 import os
+import textwrap
 
 import numpy as np
 
 from . import figures
 from .errors import InputError
 from .quantities import SCALAR, Run
-from .tables import read_json
+from .tables import read_json, read_text
 from .tradeoff import (cheapest_within, error, noise_floor, pareto_front, predict_costs,
                        predict_costs_with_updates,
                        reference_value)
 
-TARGETS = (0.01, 0.05, 0.15)
 COST_AXES = ("core-seconds", "cpu-seconds", "particle-steps")
 
 
@@ -36,13 +36,20 @@ def _cost(summary, ranks, cpu):
 
 
 def _measure(run, measures):
-    values = {}
+    """{quantity: value (None: not reached)}, {quantity: why not reached}."""
+    values, why = {}, {}
     for q in measures:
         try:
-            values[q.name] = q.measure(run)
+            values[q.name], reason = q.evaluate(run)
         except InputError as e:
             raise InputError(f"{run.directory}: {q.name}: {e}") from None
-    return values
+        if reason:
+            why[q.name] = reason
+    return values, why
+
+
+def target_text(q, t):
+    return f"{t:g} {q.unit}".rstrip() if q.absolute else f"{100 * t:g} %"
 
 
 def _read_number(path):
@@ -81,13 +88,14 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
                "settings": v.settings,
                "seed": v.seed, "reference": v.reference, "status": "not run"}
         summary = read_json(os.path.join(d, "run", "summary.json"), required=False)
-        code = open(os.path.join(d, "exit_code")).read().strip() if os.path.isfile(
+        code = read_text(os.path.join(d, "exit_code")).strip() if os.path.isfile(
             os.path.join(d, "exit_code")) else None
         if summary is not None and code == "0":
             row["status"] = "done"
             row.update(_cost(summary, ranks, _read_number(os.path.join(d, "cpu_seconds"))))
             case = read_json(os.path.join(d, "case.json"))
-            row["values"] = _measure(Run(os.path.join(d, "run"), case), measures)
+            row["values"], row["not_reached"] = _measure(Run(os.path.join(d, "run"), case),
+                                                         measures)
         elif code is not None:
             row["status"] = f"failed (exit {code})"
         rows.append(row)
@@ -107,9 +115,10 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
     for q in measures:
         seed_values = [r["values"][q.name] for r in refs]
         ref = reference_value(q.kind, seed_values)
-        floor = noise_floor(q.kind, seed_values, ref)
+        floor = noise_floor(q.kind, seed_values, ref, q.absolute)
         for r in done:
-            r.setdefault("errors", {})[q.name] = error(q.kind, r["values"][q.name], ref)
+            r.setdefault("errors", {})[q.name] = error(q.kind, r["values"][q.name], ref,
+                                                       q.absolute)
         # A setting run on several packings is one point: the error of its packings' mean
         # (the scatter between them is the noise floor's business, not the setting's).
         for g in settings:
@@ -117,19 +126,32 @@ def collect(study, variants, measures, output, ranks, axis="core_seconds"):
             # A setting whose packings did not all reach the quantity (one never liquefied) has
             # no mean to compare: no error rather than the mean of the lucky ones.
             g["errors"][q.name] = (None if any(v is None for v in values)
-                                   else error(q.kind, reference_value(q.kind, values), ref))
+                                   else error(q.kind, reference_value(q.kind, values), ref,
+                                              q.absolute))
         points = [(g[axis], g["errors"][q.name]) for g in settings
                   if g["errors"][q.name] is not None]
         names = [g["name"] for g in settings if g["errors"][q.name] is not None]
         front = [names[i] for i in pareto_front(points)]
         recommended = {}
-        for t in TARGETS:
+        for t in q.targets:
             i = cheapest_within(points, t)
-            recommended[f"{100 * t:g} %"] = names[i] if i is not None else None
-        result["quantities"][q.name] = {
-            "kind": q.kind, "unit": q.unit, "noise_floor": floor,
+            recommended[target_text(q, t)] = names[i] if i is not None else None
+        info = result["quantities"][q.name] = {
+            "kind": q.kind, "unit": q.unit, "error": "absolute" if q.absolute else "relative",
+            "noise_floor": floor,
             "reference_value": ref if q.kind == SCALAR or ref is None else "mean of seeds",
             "pareto_front": front, "recommended": recommended}
+        if ref is None:
+            reasons = [r["not_reached"][q.name] for r in refs if q.name in r["not_reached"]]
+            info["not_reached"] = reasons[0] if reasons else "no value"
+        elif not q.absolute and q.kind == SCALAR and floor is not None and floor >= 0.5:
+            unit = f" {q.unit}" if q.unit else ""
+            info["note"] = (f"the reference's seeds scatter by {100 * floor:.3g} % of its value "
+                            f"({ref:.3g}{unit}): near zero a relative error means nothing; "
+                            "give the quantity \"error\": \"absolute\"")
+        short = {r["name"]: r["not_reached"][q.name] for r in done if q.name in r["not_reached"]}
+        if ref is not None and short:
+            info["not_reached_by"] = short
     for g in settings:
         del g["rows"]
     timed = "stepping_cpu_seconds" if axis == "cpu_seconds" else "stepping_core_seconds"
@@ -180,20 +202,28 @@ def print_table(result, measures):
         if r["status"] != "done":
             print(line + r["status"])
             continue
-        for n in names:
-            v = r["values"][n]
+        for q in measures:
+            v = r["values"][q.name]
             shown = _fmt(v) if isinstance(v, float) else ("curve" if v is not None else "-")
             line += f"{shown:>18s} "
-            line += f"{_pct(r['errors'][n]):>8s} "
+            line += f"{q.error_text(r['errors'][q.name]):>8s} "
         cpu = "-" if r["cpu_seconds"] is None else f"{r['cpu_seconds']:.1f}"
         line += (f"{r['wall_seconds']:8.1f} {r['core_seconds']:8.1f} {cpu:>8s} "
                  f"{r['particle_steps']:9.3g} "
                  f"{_pct(r.get('prediction_error')):>7s}")
         print(line)
-    for n, q in result["quantities"].items():
-        print(f"{n}: noise floor {_pct(q['noise_floor'])}, Pareto front "
-              f"{' '.join(q['pareto_front'])}; cheapest within "
-              + ", ".join(f"{t}: {v or 'none'}" for t, v in q["recommended"].items()))
+    for q in measures:
+        info = result["quantities"][q.name]
+        if "not_reached" in info:
+            print(f"{q.name}: not reached by the reference: {info['not_reached']}")
+            continue
+        print(f"{q.name}: {info['error']} error, noise floor {q.error_text(info['noise_floor'])}, "
+              f"Pareto front {' '.join(info['pareto_front'])}; cheapest within "
+              + ", ".join(f"{t}: {v or 'none'}" for t, v in info["recommended"].items()))
+        if "note" in info:
+            print(f"{q.name}: note: {info['note']}")
+        for name, why in info.get("not_reached_by", {}).items():
+            print(f"{q.name}: not reached by {name}: {why}")
     if "cost_model" in result:
         m = result["cost_model"]
         print(f"cost model: {m['rate_particle_steps_per_core_second']:.4g} particle-steps per "
@@ -230,7 +260,9 @@ def write_csv(result, measures, path):
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["variant", "status", "reference", "seed", *knobs, *cost,
-                    *[c for q in measures for c in (q.name, f"{q.name} error")]])
+                    *[c for q in measures
+                      for c in (q.name, f"{q.name} error" + (f" [{q.unit}]" if q.absolute
+                                                               else ""))]])
         for r in result["variants"]:
             row = [r["name"], r["status"], int(r["reference"]), r["seed"] if r["seed"] is not None
                    else "", *[r["settings"][k] for k in knobs], *[r.get(c, "") for c in cost]]
@@ -263,33 +295,42 @@ def draw(result, measures, path, dpi):
         pts = [(r[axis], r["errors"][q.name], r) for r in done
                if r["errors"][q.name] is not None]
         if not pts:
-            ax.set_title(f"{q.name}: no value")
+            # Say why in the picture, not with an empty panel.
+            why = info.get("not_reached", "no variant has a value")
+            ax.text(0.5, 0.5, textwrap.fill(why, 40), ha="center",
+                    va="center", transform=ax.transAxes, fontsize=9)
+            ax.set_xticks([])
+            ax.set_yticks([])
+            ax.set_title(f"{q.name}: not reached" if "not_reached" in info else q.name)
             continue
-        floor_y = 1e-4
+        # Errors drawn in % (relative) or in the quantity's unit (absolute); 0 at floor_y.
+        scale, unit = (1.0, q.unit) if q.absolute else (100.0, "%")
+        floor_y = 1e-4 * scale if q.absolute else 1e-4
         ys = [max(e, floor_y) for _, e, _ in pts]
         for (c, _, r), y in zip(pts, ys):
-            ax.plot(c, 100 * y, "s" if r["reference"] else "o", color="C1" if r["reference"]
+            ax.plot(c, scale * y, "s" if r["reference"] else "o", color="C1" if r["reference"]
                     else "C0", ms=5)
-            ax.annotate(_short_label(r, result), (c, 100 * y), fontsize=6,
+            ax.annotate(_short_label(r, result), (c, scale * y), fontsize=6,
                         xytext=(3, 3), textcoords="offset points")
         groups = {g["name"]: g for g in result["settings"]}
         for g in groups.values():
             if len(g["members"]) > 1 and g["errors"][q.name] is not None:
-                ax.plot(g[axis], 100 * max(g["errors"][q.name], floor_y), "D", mfc="none",
+                ax.plot(g[axis], scale * max(g["errors"][q.name], floor_y), "D", mfc="none",
                         color="C3", ms=7)
         front = [groups[name] for name in info["pareto_front"]]
-        ax.step([g[axis] for g in front], [100 * max(g["errors"][q.name], floor_y) for g in front],
+        ax.step([g[axis] for g in front],
+                [scale * max(g["errors"][q.name], floor_y) for g in front],
                 where="post", color="C3", lw=1.2,
                 label="Pareto front (a setting on several packings: their mean, ◇)")
         if info["noise_floor"]:
-            ax.axhspan(100 * floor_y, 100 * info["noise_floor"], color="0.85", zorder=0,
-                       label=f"noise floor (seeds) {100 * info['noise_floor']:.2g} %")
+            ax.axhspan(scale * floor_y, scale * info["noise_floor"], color="0.85", zorder=0,
+                       label=f"noise floor (seeds) {q.error_text(info['noise_floor'])}")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel({"core_seconds": "cost [core-seconds: wall x ranks]",
                        "cpu_seconds": "cost [CPU core-seconds]",
                        "particle_steps": "cost [DEM particle-steps]"}[axis])
-        ax.set_ylabel(f"error of {q.name} [%] (0 drawn at {100 * floor_y:g})")
+        ax.set_ylabel(f"error of {q.name} [{unit}] (0 drawn at {scale * floor_y:g})")
         ax.set_title(q.name)
         ax.legend(loc="best", frameon=False, fontsize=8)
     for ax in list(axes.flat)[n:]:
@@ -311,10 +352,10 @@ def write_markdown(result, measures, path):
                          + f" | {r['status']} | | | |")
             continue
         cells = []
-        for n in names:
-            v, e = r["values"][n], r["errors"][n]
+        for q in measures:
+            v, e = r["values"][q.name], r["errors"][q.name]
             shown = _fmt(v) if isinstance(v, float) else ("curve" if v is not None else "-")
-            cells.append(f"{shown} ({_pct(e)})")
+            cells.append(f"{shown} ({q.error_text(e)})")
         cpu = "-" if r["cpu_seconds"] is None else f"{r['cpu_seconds']:.0f}"
         lines.append(f"| {r['name']}{' (ref)' if r['reference'] else ''} | {r['label']} | "
                      + " | ".join(cells)
@@ -329,14 +370,21 @@ def write_markdown(result, measures, path):
         axis = result["cost_axis"]
         for g in result["settings"]:
             lines.append(f"| {g['label'] or 'reference'} | {g['name']} | "
-                         + " | ".join(_pct(g["errors"][n]) for n in names)
+                         + " | ".join(q.error_text(g["errors"][q.name]) for q in measures)
                          + f" | {g[axis]:.4g} |")
     lines.append("")
-    lines.append("| quantity | noise floor | Pareto front | cheapest within 1 % / 5 % / 15 % |")
-    lines.append("|---|---|---|---|")
-    for n, q in result["quantities"].items():
-        rec = " / ".join(v or "none" for v in q["recommended"].values())
-        lines.append(f"| {n} | {_pct(q['noise_floor'])} | {' '.join(q['pareto_front'])} | {rec} |")
+    lines.append("| quantity | noise floor | Pareto front | cheapest within | error |")
+    lines.append("|---|---|---|---|---|")
+    for q in measures:
+        info = result["quantities"][q.name]
+        if "not_reached" in info:
+            lines.append(f"| {q.name} | not reached: {info['not_reached']} | | | |")
+            continue
+        rec = " / ".join(f"{t}: {v or 'none'}" for t, v in info["recommended"].items())
+        lines.append(f"| {q.name} | {q.error_text(info['noise_floor'])} | "
+                     f"{' '.join(info['pareto_front'])} | {rec} | {info['error']} |")
+        if "note" in info:
+            lines.append(f"| {q.name} | note: {info['note']} | | | |")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
 

@@ -119,6 +119,9 @@ class Study:
         spec = read_json(path)
         here = os.path.dirname(os.path.abspath(path))
         base = _need(spec, "base", path)
+        if not isinstance(base, str) or not base:
+            raise InputError(f"{path}: base: expected the base case's file name, got "
+                             f"{json.dumps(base)}")
         self.base_path = base if os.path.isabs(base) else os.path.join(here, base)
         self.base = read_json(self.base_path)
         _absolute_files(self.base, os.path.dirname(os.path.abspath(self.base_path)))
@@ -127,7 +130,10 @@ class Study:
                            "title") and not key.startswith("_"):
                 raise InputError(f"{path}: unknown key '{key}'")
         self.title = spec.get("title", os.path.splitext(os.path.basename(path))[0])
-        for p, v in spec.get("set", {}).items():
+        changes = spec.get("set", {})
+        if not isinstance(changes, dict):
+            raise InputError(f"{path}: set: expected an object path -> value")
+        for p, v in changes.items():
             set_path(self.base, p, v, create=True)
         self.also = {}
         self.knobs, self.values = self._sweep(spec, path)

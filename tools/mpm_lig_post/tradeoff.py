@@ -4,7 +4,8 @@ front of error over core-seconds, and the rate cost model with its prediction er
 
 Errors are relative: a scalar |Q - Q_ref| / |Q_ref|; a curve the RMS over the reference's x of
 the difference, over max |y_ref|; a per-cycle series the RMS of Q_c / Q_ref,c - 1 over the
-cycles both have. The noise floor is the same measure's sample standard deviation over the
+cycles both have. A scalar whose reference can be near zero (angles) is absolute instead:
+|Q - Q_ref| in its unit. The noise floor is the same measure's sample standard deviation over the
 reference's seeds (n - 1 in the denominator).
 """
 import math
@@ -37,11 +38,14 @@ def reference_value(kind, values):
     return x[keep], ys[:, keep].mean(axis=0)
 
 
-def deviation(kind, value, ref):
-    """Signed (scalar) or RMS (curve, series) difference from the reference, relative."""
+def deviation(kind, value, ref, absolute=False):
+    """Signed (scalar) or RMS (curve, series) difference from the reference, relative (or, for
+    an absolute scalar, in its unit)."""
     if value is None or ref is None:
         return None
     if kind == SCALAR:
+        if absolute:
+            return value - ref
         return (value - ref) / abs(ref) if ref != 0 else None
     if kind == SERIES:
         n = min(len(value), len(ref))
@@ -57,15 +61,15 @@ def deviation(kind, value, ref):
     return float(np.sqrt(np.mean((y[inside] - y_ref[inside]) ** 2)) / scale)
 
 
-def error(kind, value, ref):
-    """The relative error (>= 0) of a value against the reference value."""
-    d = deviation(kind, value, ref)
+def error(kind, value, ref, absolute=False):
+    """The error (>= 0) of a value against the reference value: relative, or absolute."""
+    d = deviation(kind, value, ref, absolute)
     return None if d is None else abs(d)
 
 
-def noise_floor(kind, seed_values, ref):
+def noise_floor(kind, seed_values, ref, absolute=False):
     """The reference's seed-to-seed scatter in the error's own measure (None: fewer than 2)."""
-    d = [deviation(kind, v, ref) for v in seed_values]
+    d = [deviation(kind, v, ref, absolute) for v in seed_values]
     d = [x for x in d if x is not None]
     if len(d) < 2:
         return None

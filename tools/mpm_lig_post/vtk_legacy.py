@@ -1,11 +1,11 @@
 """A small reader for the ASCII legacy-VTK polydata the RVE snapshots are written in
 (src/io/vtk_snapshot.cpp): POINTS, VERTICES, LINES, and SCALARS / VECTORS in POINT_DATA and
 CELL_DATA. numpy only."""
-import os
 
 import numpy as np
 
 from .errors import InputError
+from .tables import read_text
 
 
 class PolyData:
@@ -70,11 +70,9 @@ class _Tokens:
 
 def read_polydata(path):
     """Parse one legacy-VTK ASCII POLYDATA file."""
-    if not os.path.isfile(path):
-        raise InputError(f"{path}: file not found")
-    with open(path) as f:
-        header = [f.readline() for _ in range(4)]
-        rest = f.read()
+    lines = read_text(path).split("\n", 4)
+    header = (lines + [""] * 4)[:4]
+    rest = lines[4] if len(lines) > 4 else ""
     if not header[0].startswith("# vtk DataFile"):
         raise InputError(f"{path}: not a legacy VTK file (first line '{header[0].strip()}')")
     if header[2].strip().upper() != "ASCII":
@@ -96,6 +94,8 @@ def read_polydata(path):
             flat = tokens.numbers(tokens.integer(f"the {key} size"), key).astype(int)
             cells, k = [], 0
             for _ in range(n):
+                if k >= len(flat):
+                    raise InputError(f"{path}: {key}: {n} cells do not fit in its size")
                 cells.append(flat[k + 1:k + 1 + flat[k]])
                 k += 1 + flat[k]
             poly.cells[key] = cells
@@ -112,6 +112,9 @@ def read_polydata(path):
                 word = tokens.next("LOOKUP_TABLE")
                 components = 1
                 if word.upper() != "LOOKUP_TABLE":
+                    if not word.isdigit():
+                        raise InputError(f"{path}: SCALARS {name}: '{word}' is neither a "
+                                         "component count nor LOOKUP_TABLE")
                     components = int(word)
                     tokens.next("LOOKUP_TABLE")
                 tokens.next("the lookup table name")
