@@ -297,7 +297,10 @@ def main():
         if not os.access(a.mpm_lig, os.X_OK):
             raise InputError(f"{a.mpm_lig}: no mpm_lig executable (give --mpm-lig)")
         os.makedirs(a.output, exist_ok=True)
-        run_command([a.mpm_lig, os.path.abspath(a.case), "--output", os.path.abspath(library)],
+        # The twin's own library run: a repeated twin replaces it (mpm_lig keeps earlier
+        # results unless told).
+        run_command([a.mpm_lig, os.path.abspath(a.case), "--output", os.path.abspath(library),
+                     "--replace"],
                     a.output, os.path.join(a.output, "library.log"))
     for name in ("summary.json", "history.csv", "prepared.restart"):
         if not os.path.isfile(os.path.join(library, name)):

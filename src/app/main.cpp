@@ -169,8 +169,8 @@ std::string run_directory(const CommandLine& cl, std::string& refusal) {
 //! no earlier results; every rank learns the outcome. On refusal `refusal` says why and
 //! nothing in the folder was changed (a folder created here is empty and removed again).
 std::unique_ptr<mpm_lig::io::RunFolderLock> take_run_folder(const CommandLine& cl,
-                                                            const std::string& dir,
-                                                            bool root_rank, std::string& refusal) {
+                                                            const std::string& dir, bool root_rank,
+                                                            std::string& refusal) {
   namespace fs = std::filesystem;
   std::unique_ptr<mpm_lig::io::RunFolderLock> lock;
   int refused = 0;
@@ -182,10 +182,11 @@ std::unique_ptr<mpm_lig::io::RunFolderLock> take_run_folder(const CommandLine& c
       lock = std::make_unique<mpm_lig::io::RunFolderLock>(dir);
       const std::string earlier = cl.resume_dir ? "" : mpm_lig::io::earlier_results(dir);
       if (!earlier.empty() && !cl.replace)
-        throw mpm_lig::io::RunFolderRefused(
-            "the output folder '" + dir + "' holds an earlier run's results (" + earlier +
-            "): continue that run with --resume " + dir + ", replace its results with "
-            "--replace, or choose another --output");
+        throw mpm_lig::io::RunFolderRefused("the output folder '" + dir +
+                                            "' holds an earlier run's results (" + earlier +
+                                            "): continue that run with --resume " + dir +
+                                            ", replace its results with "
+                                            "--replace, or choose another --output");
       if (!earlier.empty())
         mpm_lig::io::remove_run_outputs(dir);
     } catch (const std::exception& e) {

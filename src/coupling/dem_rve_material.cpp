@@ -178,7 +178,7 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
 }
 
 Packing DemRveMaterial::prepare_packing(std::size_t k, const std::string& file,
-                                       MPI_Comm group_comm) const {
+                                        MPI_Comm group_comm) const {
   const std::string label = path_ + " packing " + std::to_string(k);
   if (hooks_.term_at_packing == static_cast<long>(k))
     std::raise(SIGTERM);
@@ -202,9 +202,8 @@ Packing DemRveMaterial::prepare_packing(std::size_t k, const std::string& file,
       MPI_Barrier(group_comm);
     });
   } else {
-    rve = or_end_job(label + " not loaded", [&] {
-      return rve::Rve::from_restart(spec_, file, group_comm, label);
-    });
+    rve = or_end_job(label + " not loaded",
+                     [&] { return rve::Rve::from_restart(spec_, file, group_comm, label); });
   }
   Packing p;
   const rve::Observables now = rve->observe();

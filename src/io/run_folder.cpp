@@ -3,8 +3,8 @@
 #include <cerrno>
 #include <cstring>
 #include <ctime>
-#include <fstream>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <fcntl.h>
@@ -18,11 +18,11 @@ namespace {
 namespace fs = std::filesystem;
 
 //! What an earlier run leaves: a new run into the folder would overwrite or orphan them.
-constexpr const char* kResults[] = {"summary.json", "history.csv",   "results.h5",
-                                    "results.xdmf", "snapshots",     "checkpoints/latest"};
+constexpr const char* kResults[] = {"summary.json", "history.csv", "results.h5",
+                                    "results.xdmf", "snapshots",   "checkpoints/latest"};
 //! What --replace removes: the results and what else a run writes.
-constexpr const char* kRunOutputs[] = {"summary.json", "history.csv", "results.h5",
-                                       "results.xdmf", "snapshots",   "packings",
+constexpr const char* kRunOutputs[] = {"summary.json",     "history.csv",   "results.h5",
+                                       "results.xdmf",     "snapshots",     "packings",
                                        "prepared.restart", "cost_record.h5"};
 
 std::string host_name() {
@@ -65,7 +65,8 @@ void write_record(int fd, const std::string& file) {
 }
 
 bool same_file(int fd, const std::string& file) {
-  struct stat open_one {}, named_one {};
+  struct stat open_one {
+  }, named_one{};
   return fstat(fd, &open_one) == 0 && stat(file.c_str(), &named_one) == 0 &&
          open_one.st_dev == named_one.st_dev && open_one.st_ino == named_one.st_ino;
 }
@@ -84,8 +85,10 @@ void take_by_record(int fd, const std::string& dir, const std::string& file) {
   const std::string holder = describe_record(read_record(fd), host, pid);
   if (!holder.empty() && pid != getpid()) {
     if (host != host_name())
-      throw RunFolderRefused(busy_message(dir, holder) + " (this file system has no locks: if "
-                             "no run uses the folder, remove '" + file + "')");
+      throw RunFolderRefused(busy_message(dir, holder) +
+                             " (this file system has no locks: if "
+                             "no run uses the folder, remove '" +
+                             file + "')");
     if (kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM)
       throw RunFolderRefused(busy_message(dir, holder));
   }
@@ -100,7 +103,8 @@ RunFolderLock::RunFolderLock(const std::string& dir) : file_((fs::path(dir) / kF
   for (int attempt = 0; attempt < 10; ++attempt) {
     fd_ = open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0)
-      throw RunFolderRefused("cannot create the lock file '" + file_ + "': " + std::strerror(errno));
+      throw RunFolderRefused("cannot create the lock file '" + file_ +
+                             "': " + std::strerror(errno));
     struct flock lock {};
     lock.l_type = F_WRLCK;
     lock.l_whence = SEEK_SET;

@@ -64,8 +64,8 @@ void require_within(const CaseNode& node, const std::string& key, double value, 
   if (std::abs(value) <= limit)
     return;
   const std::string where = component < 0 ? "" : " (component " + std::to_string(component) + ")";
-  node.fail(key, "must be within ±" + number(limit) + " " + unit + where + ", got " +
-                     number(value));
+  node.fail(key,
+            "must be within ±" + number(limit) + " " + unit + where + ", got " + number(value));
 }
 
 //! read_vector with every component within ±limit.
@@ -242,8 +242,9 @@ void read_bodies(const CaseNode& root, MpmCase& c) {
     body.points_per_cell = b.get_or<int>("points_per_cell", 2);
     if (body.points_per_cell < 1 || body.points_per_cell > 6)
       b.fail("points_per_cell", "must be between 1 and 6");
-    body.velocity = b.has("velocity") ? read_bounded_vector(b, "velocity", c.dimension, kMaxSpeed, "m/s")
-                                      : std::vector<double>(c.dimension, 0.0);
+    body.velocity = b.has("velocity")
+                        ? read_bounded_vector(b, "velocity", c.dimension, kMaxSpeed, "m/s")
+                        : std::vector<double>(c.dimension, 0.0);
     if (b.has("velocity_profile")) {
       const CaseNode p = b.child("velocity_profile");
       p.choice("type", {"axial_mode"});
@@ -512,7 +513,7 @@ MpmProblem read_case(const CaseNode& root, const materials::MaterialRegistry& re
   read_mesh(root.child("mesh"), c);
   c.gravity = root.has("gravity")
                   ? read_bounded_vector(root, "gravity", c.dimension, kMaxAcceleration, "m/s²")
-                                  : std::vector<double>(c.dimension, 0.0);
+                  : std::vector<double>(c.dimension, 0.0);
   read_materials(root, registry, c, problem.materials);
   check_cfl(root, c, problem.materials);
   read_bodies(root, c);

@@ -170,7 +170,7 @@ void Solver<D>::compute_shape_functions() {
     for (int d = 0; d < D; ++d) {
       if (!(xi[d] >= 0.0 && xi[d] <= grid_.cells(d))) {
         throw ReplicatedError("material point " + std::to_string(p) + " left the mesh at " +
-                                 describe_position(x));
+                              describe_position(x));
       }
     }
     std::array<Weights1d, D> w;
@@ -387,11 +387,11 @@ void Solver<D>::update_stress() {
       // inverted point: it would fail later, and be blamed, for a problem of the MPM's.
       const std::string problem = increment_problem(batch_increments_[m][k]);
       if (!problem.empty())
-        throw ReplicatedError(
-            "step " + std::to_string(steps_ + 1) + ": the deformation increment of material " +
-            "point " + std::to_string(points[k]) + " at " +
-            describe_position(particles_.position[points[k]]) + " (materials[" + std::to_string(m) +
-            "]) " + problem);
+        throw ReplicatedError("step " + std::to_string(steps_ + 1) +
+                              ": the deformation increment of material " + "point " +
+                              std::to_string(points[k]) + " at " +
+                              describe_position(particles_.position[points[k]]) + " (materials[" +
+                              std::to_string(m) + "]) " + problem);
     }
     materials_[m]->update(batch_points_[m], batch_increments_[m], dt_, batch_stress_[m]);
     for (std::size_t k = 0; k < points.size(); ++k)

@@ -25,7 +25,9 @@ PY
 "$exe" "$work/case.json" --output "$work/reference" > /dev/null || { echo "reference failed"; exit 1; }
 (MPM_LIG_KILL_AT_STEP=18 "$exe" "$work/case.json" --output "$disk/run" > /dev/null 2>&1) 2> /dev/null
 [ "$(cat "$disk/run/checkpoints/latest")" = step_16 ] || { echo "no step-16 checkpoint"; exit 1; }
-digest() { (cd "$disk/run" && find . -type f -print0 | sort -z | xargs -0 sha256sum); }
+# Every file but the folder's lock (mpm_lig.lock: who holds the folder, not a result; the
+# killed run left it, each resume takes it over).
+digest() { (cd "$disk/run" && find . -type f ! -name mpm_lig.lock -print0 | sort -z | xargs -0 sha256sum); }
 digest > "$work/before"
 dd if=/dev/zero of="$disk/filler" bs=4k 2> /dev/null  # until the disk is full
 failures=0

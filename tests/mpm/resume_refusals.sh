@@ -36,7 +36,9 @@ variant commented 'c["_see [3"] = "x"; c["materials"][0]["_note"] = "changed"'
 (MPM_LIG_KILL_AT_STEP=18 "$exe" "$work/case.json" --output "$work/base" > /dev/null 2>&1) 2> /dev/null
 [ "$(cat "$work/base/checkpoints/latest")" = step_16 ] || { echo "no step-16 checkpoint"; exit 1; }
 
-digest() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha256sum); }
+# Every file but the folder's lock (mpm_lig.lock: who holds the folder, not a result; the
+# killed base run left it, each resume takes it over).
+digest() { (cd "$1" && find . -type f ! -name mpm_lig.lock -print0 | sort -z | xargs -0 sha256sum); }
 fresh() { rm -rf "$work/run" && cp -a "$work/base" "$work/run" && digest "$work/run" > "$work/before"; }
 unchanged() {
   digest "$work/run" > "$work/after"
@@ -58,11 +60,11 @@ fresh; mkdir -p "$work/victim" && echo keep > "$work/victim/data"
 echo "../../victim" > "$work/run/checkpoints/latest"; digest "$work/run" > "$work/before"
 resume_refused "does not name a checkpoint of this folder"
 scenario="latest names a folder outside (new run)"
-expect 0 "" "$work/case.json" --output "$work/run"
+expect 0 "" "$work/case.json" --output "$work/run" --replace
 [ "$(cat "$work/victim/data" 2>/dev/null)" = keep ] || fail "victim/ was touched"
 scenario="latest is .. (new run)"
 fresh; echo keep > "$work/run/user_notes.txt"; echo ".." > "$work/run/checkpoints/latest"
-expect 0 "" "$work/case.json" --output "$work/run"
+expect 0 "" "$work/case.json" --output "$work/run" --replace
 [ -f "$work/run/user_notes.txt" ] || fail "the user's file in the output folder is gone"
 
 scenario="flipped byte in mpm.h5"
@@ -141,10 +143,15 @@ unchanged
 scenario="comment keys (one with an unmatched '[') added on resume"
 fresh; expect 0 "" "$work/commented.json" --resume "$work/run"
 
+scenario="new run into a stopped run's folder without --replace"
+fresh; expect 2 "holds an earlier run's results \(history.csv\): continue that run with --resume" \
+  "$work/case.json" --output "$work/run"
+unchanged
+
 scenario="foreign files in checkpoints/ (new run)"
 fresh; mkdir "$work/run/checkpoints/mine" && echo keep > "$work/run/checkpoints/mine/data"
 echo keep > "$work/run/checkpoints/notes.txt"
-expect 0 "" "$work/case.json" --output "$work/run"
+expect 0 "" "$work/case.json" --output "$work/run" --replace
 [ -f "$work/run/checkpoints/mine/data" ] && [ -f "$work/run/checkpoints/notes.txt" ] ||
   fail "the user's files in checkpoints/ are gone"
 
