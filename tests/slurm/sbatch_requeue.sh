@@ -13,7 +13,7 @@
 # checkpoints every 20 steps; once it has stopped, its end is set to 150 steps after the stop
 # (`end` is a key a resume may change, tests/coupling/sigterm_checkpoint.sh) and its time limit
 # put back to 30 minutes while Slurm holds the requeued job (BeginTime: AuthInfo's cred_expire
-# + 1 s, 11 s here against Slurm's default 121 s; released at once, slurmd refuses to start it:
+# + 1 s, 21 s here against Slurm's default 121 s; released at once, slurmd refuses to start it:
 # "Job credential revoked").
 # Slurm and munge are installed with tools/install_deps.sh slurm when missing; where they cannot
 # be installed or the daemons cannot start, the test is skipped (exit 77) with the reason. The
@@ -111,7 +111,7 @@ SlurmctldPort=$ctl_port
 SlurmdPort=$node_port
 AuthType=auth/munge
 CredType=cred/munge
-AuthInfo=socket=$sock_dir/munge.socket,cred_expire=10
+AuthInfo=socket=$sock_dir/munge.socket,cred_expire=20
 StateSaveLocation=$cl/state
 SlurmdSpoolDir=$cl/spool
 SlurmctldPidFile=$cl/slurmctld.pid
