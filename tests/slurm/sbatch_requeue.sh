@@ -186,7 +186,11 @@ echo "submitted job $job (the run) and job $failing (an engine failure at point 
 
 # 1. The end of the allocation: once the run steps, its time limit is cut to 5 minutes from now
 # or less, inside the 300 s of --signal=TERM@300.
-history_rows() { [[ -f $work/run/history.csv ]] && (($(wc -l < "$work/run/history.csv") >= 5)); }
+history_rows() {
+  [[ $(job_field "$job" JobState) =~ ^(PENDING|RUNNING)$ ]] ||
+    fail "the job ended before it stepped: $(job_field "$job" JobState) $(job_field "$job" ExitCode)"
+  [[ -f $work/run/history.csv ]] && (($(wc -l < "$work/run/history.csv") >= 5))
+}
 wait_for 180 "the run made no progress" history_rows
 elapsed=$(job_field "$job" RunTime)
 IFS=: read -r h m s <<< "$elapsed"
@@ -195,6 +199,8 @@ echo "run stepping after $elapsed: time limit cut to $(job_field "$job" TimeLimi
 requeued() { [[ $(job_field "$job" JobState) == PENDING && $(job_field "$job" Restarts) == 1 ]]; }
 wait_for 120 "the job was not requeued" requeued
 grep -q "stopped by a signal after step" "$work/run.out" || fail "no stop message from mpm_lig"
+grep -q "starting 2 ranks: srun --mpi=pmix" "$work/run.out" ||
+  fail "the batch script did not pick srun --mpi=pmix (offered: $(srun --mpi=list 2>&1 | tr '\n' ' '))"
 grep -q "mpm_lig stopped (exit 4) before the end: requeueing" "$work/run.out" ||
   fail "the batch script did not see exit 4"
 [[ -f $work/run/summary.json ]] && fail "the stopped run wrote summary.json"
