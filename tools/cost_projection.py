@@ -2,6 +2,7 @@
 """Project the cost of an mpm_lig run with dem_rve materials from short measured runs.
 
     tools/cost_projection.py TARGET.json --run OUT_DIR [CASE.json] [--run ...] [--json FILE]
+                             [--ranks N ...] [--efficiency E]
 
 Each measured run directory holds the `summary.json` that mpm_lig writes (wall_seconds,
 dem_particle_steps, rve_count, ranks, mpm_steps, time_split). The case file of a measured run is
@@ -11,6 +12,10 @@ projection needs unless --substeps gives them.
 Projected core-seconds = RVEs x grains x sub-steps x MPM steps / (particle-steps/s per core),
 where the rate per core counts the stepping phase only (wall time minus packing preparation and
 output), so load imbalance between ranks is included. Preparation is reported separately.
+With --ranks, the wall time of the stepping and the core-hours an allocation of N cores is
+charged for it, at each N: a step lasts as long as the busiest rank, so the stepping efficiency
+is at most the RVE granularity (RVEs / N) / ceil(RVEs / N) (equal RVEs, one rank each), times
+--efficiency (default 1: the RVEs' cost spread perfectly; give a measured or modelled figure).
 Exit code 2 on a missing file or key (named in the message).
 """
 from mpm_lig_post.requirements import require
@@ -167,6 +172,20 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None):
     }
 
 
+def at_ranks(projection, ranks, efficiency):
+    """Wall hours and charged core-hours of the stepping on each rank count."""
+    rves = projection["rve_count"]
+    rows = []
+    for n in ranks:
+        granularity = (rves / n) / math.ceil(rves / n)
+        stepping = granularity * efficiency
+        wall_h = projection["core_hours"] / (n * stepping)
+        rows.append({"ranks": n, "rves_per_rank": rves / n, "granularity": granularity,
+                     "stepping_efficiency": stepping, "wall_hours": wall_h,
+                     "charged_core_hours": n * wall_h})
+    return rows
+
+
 def main(argv=None):
     p = cli.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--run", nargs="+", action="append", required=True, metavar="DIR [CASE]",
@@ -176,13 +195,23 @@ def main(argv=None):
     p.add_argument("--time-step", type=cli.positive, help="MPM time step of the target [s]")
     p.add_argument("--rate", type=cli.positive, help="particle-steps/s per core to assume")
     p.add_argument("--json", help="write the result to this file")
+    p.add_argument("--ranks", type=int, nargs="+", metavar="N",
+                   help="rank counts to give the stepping's wall time and charged core-hours at")
+    p.add_argument("--efficiency", type=float, default=1.0,
+                   help="stepping efficiency besides the RVE granularity (default 1)")
     a = p.parse_args(argv)
     cli.writable_file(a.json, "--json file")
     if any(len(r) > 2 for r in a.run):
         raise InputError("--run takes a directory and at most one case file")
+    if a.ranks and min(a.ranks) < 1:
+        raise InputError(f"--ranks {min(a.ranks)}: a rank count is at least 1")
+    if not 0.0 < a.efficiency <= 1.0:
+        raise InputError(f"--efficiency {a.efficiency}: a stepping efficiency is in (0, 1]")
     runs = [measure(r[0], r[1] if len(r) > 1 else None) for r in a.run]
     result = {"measured": runs,
               "projection": project(runs, a.target, a.substeps, a.time_step, a.rate)}
+    if a.ranks:
+        result["ranks"] = at_ranks(result["projection"], a.ranks, a.efficiency)
     for r in runs:
         line = (f"{r['run']}: {r['rve_count']} RVEs, {r['mpm_steps']} steps, {r['ranks']} ranks, "
                 f"{r['particle_steps_per_s_per_core']:.4g} particle-steps/s per core, "
@@ -198,6 +227,10 @@ def main(argv=None):
           f"{pr['core_hours']:.4g} core-hours (packing preparation not included)")
     for n in pr["assumptions"]:
         print(f"  assumes {n}")
+    for r in result.get("ranks", []):
+        print(f"  {r['ranks']} ranks: {r['rves_per_rank']:.3g} RVEs per rank, stepping efficiency "
+              f"{r['stepping_efficiency']:.3g} (granularity {r['granularity']:.3g}), "
+              f"{r['wall_hours']:.3g} h wall, {r['charged_core_hours']:.4g} core-hours charged")
     if a.json:
         with open(a.json, "w") as f:
             json.dump(result, f, indent=2)

@@ -1,15 +1,24 @@
 #!/usr/bin/env bash
 # Install the Debian 12 packages mpm_lig needs, only those that are missing.
+#   bash tools/install_deps.sh          what the build, the tests and the tools need
+#   bash tools/install_deps.sh slurm    Slurm and munge, for the test that runs the batch script
+#                                       under a one-node Slurm cluster (label slurm)
 set -euo pipefail
 
-packages=(
-  g++ cmake make clang-format
-  openmpi-bin libopenmpi-dev
-  liggghts libliggghts-dev
-  lammps liblammps-dev
-  libeigen3-dev nlohmann-json3-dev libhdf5-dev libssl-dev libgtest-dev
-  python3 python3-numpy python3-matplotlib python3-h5py
-)
+case ${1:-build} in
+  build)
+    packages=(
+      g++ cmake make clang-format
+      openmpi-bin libopenmpi-dev
+      liggghts libliggghts-dev
+      lammps liblammps-dev
+      libeigen3-dev nlohmann-json3-dev libhdf5-dev libssl-dev libgtest-dev
+      python3 python3-numpy python3-matplotlib python3-h5py
+    )
+    ;;
+  slurm) packages=(slurm-wlm munge) ;;
+  *) echo "usage: $0 [build|slurm]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

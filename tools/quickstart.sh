@@ -3,7 +3,11 @@
 #   bash tools/quickstart.sh demo [quickstart|footing|cyclic]
 #                                   install what is missing, build, run a demo case (a few minutes
 #                                   at most) and draw a picture of what it computed
-#   bash tools/quickstart.sh test   install what is missing, build, run the whole test suite
+#   bash tools/quickstart.sh test   install what is missing, build, run the whole test suite but
+#                                   the Slurm test (label slurm, about 1.5-2 min: it installs
+#                                   and starts a one-node Slurm cluster); CTEST_ARGS replaces
+#                                   ctest's selection: CTEST_ARGS="-L slurm" runs that test alone,
+#                                   CTEST_ARGS= everything
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -58,6 +62,6 @@ case $what in
     echo "pictures: $(ls $out/*.png | tr '\n' ' ')"
     ;;
   test)
-    ctest --test-dir build --output-on-failure -j"$jobs" ${CTEST_ARGS:-}
+    ctest --test-dir build --output-on-failure -j"$jobs" ${CTEST_ARGS--LE slurm}
     ;;
 esac

@@ -1,6 +1,6 @@
 """Checks of tools/cost_projection.py on synthetic run summaries with known answers.
 
-usage: check_cost_projection.py CASE WORK_DIR   (CASE: steps | time | bad)
+usage: check_cost_projection.py CASE WORK_DIR   (CASE: steps | time | ranks | bad)
 """
 import json
 import math
@@ -107,6 +107,31 @@ def time(work):
     close(p["core_hours"], 400 * 400 * 30 / 2e6 * 1000 / 3600, "core-hours")
 
 
+def ranks(work):
+    a, a_case, _ = setup(work)
+    # 200 RVEs (as in `steps`) on 64, 200 and 256 ranks at a stepping efficiency of 0.8: the
+    # busiest rank holds ceil(200 / N) RVEs, 4, 1 and 1, so the granularity is 200 / (64 * 4),
+    # 1 and 200 / 256; wall = core-hours / (N * granularity * 0.8).
+    target = os.path.join(work, "target.json")
+    write(target, dem_case([1.0, 1.0], [10, 10], [1.0, 0.5], 2, 400, {"steps": 1000}))
+    out = os.path.join(work, "projection.json")
+    r = run(target, "--run", a, a_case, "--ranks", "64", "200", "256", "--efficiency", "0.8",
+            "--json", out)
+    expect(r.returncode == 0, f"exit code {r.returncode}")
+    res = json.load(open(out))
+    core_hours = 200 * 400 * 50 / 8e4 * 1000 / 3600
+    for row, n, busiest in zip(res["ranks"], (64, 200, 256), (4, 1, 1)):
+        granularity = 200 / (n * busiest)
+        expect(row["ranks"] == n, f"rank counts {res['ranks']}")
+        close(row["granularity"], granularity, f"granularity at {n}")
+        close(row["wall_hours"], core_hours / (n * granularity * 0.8), f"wall at {n}")
+        close(row["charged_core_hours"], core_hours / (granularity * 0.8), f"charged at {n}")
+    expect("256 ranks" in r.stdout, "rank rows printed")
+    for args, word in ((["--efficiency", "1.5"], "--efficiency"), (["--ranks", "0"], "--ranks")):
+        r = run(target, "--run", a, a_case, *args)
+        expect(r.returncode == 2 and word in r.stderr, f"{args}: exit {r.returncode}")
+
+
 def bad(work):
     a, a_case, _ = setup(work)
     s = json.load(open(os.path.join(a, "summary.json")))
@@ -119,5 +144,5 @@ def bad(work):
 
 if __name__ == "__main__":
     case, work = sys.argv[1], sys.argv[2]
-    {"steps": steps, "time": time, "bad": bad}[case](os.path.join(work, case))
+    {"steps": steps, "time": time, "ranks": ranks, "bad": bad}[case](os.path.join(work, case))
     print(f"{case}: ok")
