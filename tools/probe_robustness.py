@@ -554,9 +554,10 @@ def _(work):
 
 
 # ---------------------------------------------------------------------------------------------
-# runtime: a state that overflows during the run
+# runtime: loads that would overflow the run's state are refused before it starts (the value
+# limits of docs/running.md §4), naming the JSON path
 
-@probe("runtime", "overflow_continuum", exit=1, expect=r"not finite")
+@probe("runtime", "overflow_continuum", exit=2, expect=r"gravity: must be within")
 def _(work):
     c = case(FREE_FLIGHT)
     c["gravity"] = [0, -1e308]
@@ -564,7 +565,7 @@ def _(work):
     return [write_case(work, c), "--output", "out"]
 
 
-@probe("runtime", "overflow_dem", exit=1, expect=r"not finite", timeout=120)
+@probe("runtime", "overflow_dem", exit=2, expect=r"gravity: must be within", timeout=120)
 def _(work):
     c = case(TINY_DEM)
     c["gravity"] = [0, -1e308]
