@@ -16,7 +16,8 @@ bench_allgather's JSON (--gather; fitted as a log2(R) + b x bytes) or defaults s
 output.
 
 usage: scaling_model.py RECORD_OR_OUTPUT [--ranks 2,4,...] [--tile K] [--gather FILE]
-       [--rate R] [--threshold T --horizon H --move-cost C] [--json FILE] [--plot FILE]
+       [--rate R] [--threshold T --horizon H --move-cost C] [--update-cost U]
+       [--json FILE] [--plot FILE]
 --tile K repeats every point K times (the same costs): a crude stand-in for a larger case.
 """
 import argparse
@@ -169,6 +170,8 @@ def main():
     p.add_argument("--threshold", type=float, default=0.02)
     p.add_argument("--horizon", type=int, default=10)
     p.add_argument("--move-cost", type=float, default=60.0, help="DEM steps of one RVE")
+    p.add_argument("--update-cost", type=float,
+                   help="fixed cost per update in DEM steps (default: the record's)")
     p.add_argument("--json")
     p.add_argument("--plot")
     a = p.parse_args()
@@ -179,6 +182,10 @@ def main():
     if not ranks or min(ranks) < 1 or a.tile < 1:
         fail("--ranks and --tile must be >= 1")
     r = read_record(a.record)
+    if a.update_cost is not None:
+        if a.update_cost < 0:
+            fail("--update-cost must be >= 0")
+        r["update_cost_steps"] = a.update_cost
     ran = r["measured_steps"] > 0
     measured_work = work_of(r["measured_steps"], ran, r["grains"], r["update_cost_steps"]).sum()
     seconds = float(r["seconds"].astype(float).sum())
