@@ -18,7 +18,8 @@ output.
 usage: scaling_model.py RECORD_OR_OUTPUT [--ranks 2,4,...] [--tile K] [--gather FILE]
        [--rate R] [--threshold T --horizon H --move-cost C] [--update-cost U]
        [--json FILE] [--plot FILE]
---tile K repeats every point K times (the same costs): a crude stand-in for a larger case.
+--tile K repeats every point K times in a row (neighbours of the same cost, as in a K times
+finer numbering of the same field): a crude stand-in for a larger case.
 """
 import argparse
 import glob
@@ -105,8 +106,8 @@ def lpt(cost, groups):
 
 def project(r, ranks, tile, threshold, horizon, move_cost_steps):
     grains, u = r["grains"], r["update_cost_steps"]
-    measured = np.tile(r["measured_steps"].astype(float), (1, tile))
-    predicted = np.tile(r["predicted_steps"].astype(float), (1, tile))
+    measured = np.repeat(r["measured_steps"].astype(float), tile, axis=1)
+    predicted = np.repeat(r["predicted_steps"].astype(float), tile, axis=1)
     ran = measured > 0
     work = work_of(measured, ran, grains, u)
     pred = work_of(predicted, ran | (predicted > 0), grains, u)
