@@ -35,7 +35,8 @@ int main(int argc, char** argv) {
     } else if (arg == "--json" && i + 1 < argc) {
       json_file = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: bench_allgather [--points a,b,...] [--repeats N] [--json FILE]\n");
+      std::fprintf(stderr,
+                   "usage: bench_allgather [--points a,b,...] [--repeats N] [--json FILE]\n");
       return 2;
     }
   }
@@ -64,8 +65,12 @@ int main(int argc, char** argv) {
     const double median = times[times.size() / 2], best = times.front();
     if (rank == 0)
       std::printf("%6d %8zu %14.2f %14.2f\n", ranks, points, median * 1e6, best * 1e6);
-    rows.push_back({{"ranks", ranks}, {"points", points}, {"median_seconds", median},
-                    {"min_seconds", best}, {"repeats", repeats}, {"batch", batch}});
+    rows.push_back({{"ranks", ranks},
+                    {"points", points},
+                    {"median_seconds", median},
+                    {"min_seconds", best},
+                    {"repeats", repeats},
+                    {"batch", batch}});
   }
   if (rank == 0 && !json_file.empty()) {
     std::ofstream out(json_file);

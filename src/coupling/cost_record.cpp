@@ -14,29 +14,30 @@ using io::check;
 
 //! Rows per chunk: about 256 KB of one per-point field, at least one row.
 hsize_t chunk_rows(std::size_t points) {
-  return static_cast<hsize_t>(std::clamp<std::size_t>(65536 / std::max<std::size_t>(points, 1),
-                                                      1, 1024));
+  return static_cast<hsize_t>(
+      std::clamp<std::size_t>(65536 / std::max<std::size_t>(points, 1), 1, 1024));
 }
 
 void create_set(hid_t file, const char* name, hid_t type, std::size_t points) {
   const int rank = points > 0 ? 2 : 1;
   const hsize_t dims[2] = {0, points};
   const hsize_t max[2] = {H5S_UNLIMITED, points};
-  const hsize_t chunk[2] = {chunk_rows(std::max<std::size_t>(points, 1)), std::max<hsize_t>(points, 1)};
+  const hsize_t chunk[2] = {chunk_rows(std::max<std::size_t>(points, 1)),
+                            std::max<hsize_t>(points, 1)};
   io::H5Space space(check(H5Screate_simple(rank, dims, max), "create a dataspace"));
   io::Hdf5Handle<H5Pclose> props(check(H5Pcreate(H5P_DATASET_CREATE), "create properties"));
   check(H5Pset_chunk(props.get(), rank, chunk), "set a chunk size");
   check(H5Pset_shuffle(props.get()), "set the shuffle filter");
   check(H5Pset_deflate(props.get(), 4), "set compression");
-  io::H5Dataset set(check(H5Dcreate2(file, name, type, space.get(), H5P_DEFAULT, props.get(),
-                                     H5P_DEFAULT),
-                          std::string("create '") + name + "'"));
+  io::H5Dataset set(
+      check(H5Dcreate2(file, name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
+            std::string("create '") + name + "'"));
 }
 
 void set_attribute(hid_t file, const char* name, double value) {
   io::H5Space space(check(H5Screate(H5S_SCALAR), "create a dataspace"));
-  io::H5Attribute a(check(
-      H5Acreate2(file, name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), name));
+  io::H5Attribute a(
+      check(H5Acreate2(file, name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), name));
   check(H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value), std::string("write ") + name);
 }
 
@@ -108,8 +109,8 @@ CostRecord::~CostRecord() {
   try {
     flush();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "warning: the cost record '%s' misses its last rows: %s\n",
-                 file_.c_str(), e.what());
+    std::fprintf(stderr, "warning: the cost record '%s' misses its last rows: %s\n", file_.c_str(),
+                 e.what());
   }
 }
 

@@ -54,7 +54,7 @@ Packing packing_from(const double* v, const std::string& restart_file) {
   return p;
 }
 
-constexpr const char* kOwnersName = "rve_owner";    // groups, then every point's group
+constexpr const char* kOwnersName = "rve_owner";   // groups, then every point's group
 constexpr const char* kSteppingName = "stepping";  // StepTotals ×3, migrations, rebalances
 
 std::string checkpoint_file(const std::string& dir, std::size_t point) {
@@ -322,9 +322,9 @@ void DemRveMaterial::rebalance(const std::vector<double>& predicted_work) {
   if (!balance_spec_.enabled || layout_->groups() < 2)
     return;
   // Replicated costs and owners only: every rank plans the same moves, and so does a resume.
-  const BalancePlan plan =
-      plan_moves(predicted_work, layout_->owners(), layout_->groups(), balance_spec_.threshold,
-                 balance_spec_.horizon, balance_spec_.move_cost * static_cast<double>(spec_.grains));
+  const BalancePlan plan = plan_moves(predicted_work, layout_->owners(), layout_->groups(),
+                                      balance_spec_.threshold, balance_spec_.horizon,
+                                      balance_spec_.move_cost * static_cast<double>(spec_.grains));
   if (plan.moves == 0)
     return;
   migrate(plan.owner);
@@ -369,10 +369,10 @@ void DemRveMaterial::migrate(const std::vector<int>& owners) {
     const std::size_t p = moving[k];
     if (owners[p] != group)
       continue;
-    rves_[p] = or_end_job(
-        point_label(p) + " not moved from rank group " + std::to_string(before[p]), [&] {
-          return receive_rve(spec_, file(p), unpack_state(states[k].data()),
-                             layout_->group_comm(), point_label(p));
+    rves_[p] =
+        or_end_job(point_label(p) + " not moved from rank group " + std::to_string(before[p]), [&] {
+          return receive_rve(spec_, file(p), unpack_state(states[k].data()), layout_->group_comm(),
+                             point_label(p));
         });
   }
   cost_.stepping.migration_seconds += MPI_Wtime() - start;
@@ -396,9 +396,9 @@ void DemRveMaterial::account(const std::vector<double>& predicted_steps,
 void DemRveMaterial::start_cost_record(bool resumed) {
   if (rank_ != 0 || work_dir_.empty())
     return;
-  record_ = std::make_unique<CostRecord>(work_dir_ + "/cost_record.h5", points_,
-                                         static_cast<double>(spec_.grains),
-                                         balance_spec_.update_cost);
+  record_ =
+      std::make_unique<CostRecord>(work_dir_ + "/cost_record.h5", points_,
+                                   static_cast<double>(spec_.grains), balance_spec_.update_cost);
   or_end_job(path_ + ": the cost record not started", [&] {
     std::filesystem::create_directories(work_dir_);
     if (resumed)
@@ -487,7 +487,6 @@ const char* const kQuietStatNames[QuietPoints::kStatValues] = {
     "continuum_updates",  "continuum_switches",       "continuum_jump_sum",
     "continuum_max_jump", "continuum_jumps_exceeded", "continuum_threshold_scale"};
 
-
 }  // namespace
 
 void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::size_t points) {
@@ -518,10 +517,10 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
   std::vector<double> owners{static_cast<double>(layout_->groups())};
   owners.insert(owners.end(), layout_->owners().begin(), layout_->owners().end());
   out.write(kOwnersName, owners);
-  out.write(kSteppingName, {predicted_totals_.work, predicted_totals_.makespan,
-                            predicted_totals_.bound, work_totals_.work, work_totals_.makespan,
-                            work_totals_.bound, seconds_totals_.work, seconds_totals_.makespan,
-                            seconds_totals_.bound, migrations_, rebalances_});
+  out.write(kSteppingName,
+            {predicted_totals_.work, predicted_totals_.makespan, predicted_totals_.bound,
+             work_totals_.work, work_totals_.makespan, work_totals_.bound, seconds_totals_.work,
+             seconds_totals_.makespan, seconds_totals_.bound, migrations_, rebalances_});
   if (record_)
     or_end_job(path_ + ": the cost record not written", [&] { record_->flush(); });
 }

@@ -130,7 +130,7 @@ class DemRveMaterial final : public materials::Material {
   std::vector<Mat3> stress_;                     //!< every point's last stress (all ranks)
   std::vector<double> substeps_;                 //!< every point's last DEM step count
   std::vector<double> dem_pressure_;  //!< every RVE's mean stress as it knows it (Rve::State)
-  DemWork work_;                                 //!< every point's DEM work (all ranks)
+  DemWork work_;                      //!< every point's DEM work (all ranks)
   QuietSpec quiet_spec_;
   ContinuumStartSpec continuum_start_spec_;
   QuietPoints quiet_;  //!< every point's quiet state (all ranks)

@@ -57,8 +57,8 @@ struct SteppingCost {
   double work_predicted = 0.0, makespan_predicted = 0.0;  //!< from the predicted costs
   double work = 0.0, makespan = 0.0, bound = 0.0;         //!< from the measured steps
   double seconds = 0.0, makespan_seconds = 0.0;           //!< the owners' measured times
-  double migrations = 0.0;         //!< RVEs moved to another group
-  double rebalances = 0.0;         //!< updates before which RVEs moved
+  double migrations = 0.0;                                //!< RVEs moved to another group
+  double rebalances = 0.0;                                //!< updates before which RVEs moved
   double migration_seconds = 0.0;  //!< this rank's time moving them (waits included)
 };
 

@@ -338,17 +338,17 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
     };
     // The mean group's waiting for the busiest one, step by step (from the owners' times).
     const double waiting = t.makespan_seconds - t.seconds / t.groups;
-    s["stepping"] = {{"rank_groups", t.groups},
-                     {"efficiency", stepping_efficiency(t)},
-                     {"efficiency_predicted", efficiency(t.work_predicted, t.makespan_predicted)},
-                     {"efficiency_seconds", efficiency(t.seconds, t.makespan_seconds)},
-                     {"efficiency_bound", efficiency(t.work, t.bound)},
-                     {"waiting_seconds", waiting},
-                     {"waiting_share", totals.wall_seconds > 0.0 ? waiting / totals.wall_seconds
-                                                                 : 0.0},
-                     {"migrations", t.migrations},
-                     {"rebalances", t.rebalances},
-                     {"migration_seconds", t.migration_seconds}};
+    s["stepping"] = {
+        {"rank_groups", t.groups},
+        {"efficiency", stepping_efficiency(t)},
+        {"efficiency_predicted", efficiency(t.work_predicted, t.makespan_predicted)},
+        {"efficiency_seconds", efficiency(t.seconds, t.makespan_seconds)},
+        {"efficiency_bound", efficiency(t.work, t.bound)},
+        {"waiting_seconds", waiting},
+        {"waiting_share", totals.wall_seconds > 0.0 ? waiting / totals.wall_seconds : 0.0},
+        {"migrations", t.migrations},
+        {"rebalances", t.rebalances},
+        {"migration_seconds", t.migration_seconds}};
   }
   if (cost.particle_steps > 0.0)
     s["dem_work_shares"] = {

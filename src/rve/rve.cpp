@@ -201,8 +201,7 @@ int substeps_for_increment(const RveSpec& spec, const Mat3& effective_increment,
   const double strain = (effective_increment - Mat3::Identity()).norm();
   const double p = std::max(std::abs(mean_stress), s.pressure_floor);
   const double d = 2.0 * spec.radius.mean();
-  const double n =
-      strain * d * std::sqrt(spec.density / p) / (s.inertial_number * spec.time_step);
+  const double n = strain * d * std::sqrt(spec.density / p) / (s.inertial_number * spec.time_step);
   return static_cast<int>(std::min<double>(s.max, std::max<double>(s.min, std::ceil(n))));
 }
 

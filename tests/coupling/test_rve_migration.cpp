@@ -10,11 +10,11 @@
 #include <memory>
 #include <string>
 
+#include "../rve/test_packing.h"
+#include "../rve/test_rve_spec.h"
 #include "coupling/rve_migration.h"
 #include "rve/placement.h"
 #include "rve/rve.h"
-#include "../rve/test_packing.h"
-#include "../rve/test_rve_spec.h"
 
 using namespace mpm_lig;
 
@@ -76,8 +76,8 @@ TEST(RveMigration, MovedRveKeepsContactHistoryAndPlacement) {
   double packed[coupling::kRveStateValues];
   coupling::pack_state(state, packed);
   leaving.reset();
-  auto moved = coupling::receive_rve(spec, file, coupling::unpack_state(packed), MPI_COMM_WORLD,
-                                     "moved");
+  auto moved =
+      coupling::receive_rve(spec, file, coupling::unpack_state(packed), MPI_COMM_WORLD, "moved");
   EXPECT_FALSE(std::filesystem::exists(file)) << "the moved RVE's restart file was left behind";
   EXPECT_FALSE(std::filesystem::exists(rve::Rve::placement_file(file)));
   // Control 1: the same moment saved, read back without the exact placement (and with the
