@@ -60,7 +60,7 @@ TEST(RveMigration, MovedRveKeepsContactHistoryAndPlacement) {
   nlohmann::json json = test::small_rve_json();
   json["substeps"] = {{"fixed", 30}};
   const rve::RveSpec spec = test::parse_rve(json);
-  const std::string dir = std::string(MPM_LIG_BINARY_DIR) + "/test_rve_migration";
+  const std::string dir = std::string(MPM_LIG_BINARY_DIR) + "/test_rve_migration_files";
   const std::string packing = test::consolidated_packing(spec, dir);
   const std::string file = dir + "/point_0.restart";
   auto twin = rve::Rve::from_restart(spec, packing, MPI_COMM_WORLD, "twin");
