@@ -1,6 +1,7 @@
 #include "coupling/dem_rve_material.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include "core/mpi_session.h"
 #include "core/stop_signal.h"
 #include "coupling/point_checkpoint.h"
+#include "coupling/rve_migration.h"
 #include "dem/file_name.h"
 #include "rve/consolidation.h"
 #include "rve/observables.h"
@@ -54,6 +56,13 @@ Packing packing_from(const double* v, const std::string& restart_file) {
   return p;
 }
 
+constexpr const char* kOwnersName = "rve_owner";   // groups, then every point's group
+constexpr const char* kSteppingName = "stepping";  // StepTotals ×3, migrations, rebalances
+
+std::string checkpoint_file(const std::string& dir, std::size_t point) {
+  return dir + "/point_" + std::to_string(point) + ".restart";
+}
+
 //! Run `work` on one RVE's files; a failure ends the whole job at once with `what` and the
 //! reason: the other ranks are about to wait for this one in a collective call.
 template <class Work>
@@ -84,9 +93,17 @@ DemRveMaterial::DemRveMaterial(const CaseNode& node) : path_(node.path()) {
     quiet_spec_ = parse_quiet(node.child("quiet"));
   if (node.has("start_as_continuum"))
     continuum_start_spec_ = parse_continuum_start(node.child("start_as_continuum"));
+  if (node.has("balance"))
+    balance_spec_ = parse_balance(node.child("balance"));
 }
 
-DemRveMaterial::~DemRveMaterial() = default;
+DemRveMaterial::~DemRveMaterial() {
+  // The folder moving RVEs pass through is empty between moves.
+  if (rank_ == 0 && !work_dir_.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(work_dir_ + "/migration", ignored);
+  }
+}
 
 std::string DemRveMaterial::point_label(std::size_t point) const {
   return path_ + " material point " + std::to_string(point) + " (MPI rank " +
@@ -129,6 +146,7 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   hooks_ = context.hooks;
   MPI_Comm_rank(comm_, &rank_);
   const std::string& work_dir = context.work_dir;
+  work_dir_ = work_dir;
   if (spec_.restart_file.empty()) {
     if (rank_ == 0)
       std::filesystem::create_directories(work_dir);
@@ -253,15 +271,19 @@ void DemRveMaterial::create_rves() {
   layout_ = std::make_unique<RveLayout>(comm_, ranks_per_rve_, points_);
   stress_.resize(points_);
   substeps_.assign(points_, 0.0);
+  dem_pressure_.assign(points_, 0.0);  // a clone has not measured its stress yet
   for (std::size_t p = 0; p < points_; ++p)
     stress_[p] = initial_stress(p);
+  rves_.clear();
+  rves_.resize(points_);
   for (const std::size_t p : layout_->owned()) {
-    rves_.push_back(or_end_job(point_label(p) + " not cloned", [&] {
+    rves_[p] = or_end_job(point_label(p) + " not cloned", [&] {
       return rve::Rve::from_restart(spec_, packings_[packing_of(p)].restart_file,
                                     layout_->group_comm(), point_label(p));
-    }));
+    });
   }
   start_work_ledger();
+  start_cost_record(false);
   cost_.simulations = points_;
   cost_.preparation_seconds += MPI_Wtime() - start;
 }
@@ -287,12 +309,13 @@ void DemRveMaterial::inject_fault_if_asked(std::size_t point, rve::Rve& rve) con
     rve.engine().command("mpm_lig_injected_fault (MPM_LIG_FAULT_POINT)");
 }
 
-void DemRveMaterial::deform_owned(const std::vector<long>& batch_index, const std::vector<Mat3>& dF,
-                                  std::vector<Mat3>& owned_stress,
-                                  std::vector<double>& owned_steps) {
+std::vector<double> DemRveMaterial::deform_owned(const std::vector<long>& batch_index,
+                                                 const std::vector<Mat3>& dF) {
+  std::vector<double> owned;
   for (const std::size_t p : layout_->owned()) {
-    rve::Rve& rve = *rves_[layout_->local_index(p)];
+    rve::Rve& rve = *rves_[p];
     double steps = 0.0;
+    const double start = MPI_Wtime();
     if (batch_index[p] >= 0) {
       inject_fault_if_asked(p, rve);
       // One rank's failure must end the whole job: the others are about to wait for it.
@@ -308,9 +331,121 @@ void DemRveMaterial::deform_owned(const std::vector<long>& batch_index, const st
                   kExitEngineFailure);
       }
     }
-    owned_stress.push_back(stress_[p]);
-    owned_steps.push_back(steps);
+    owned.insert(owned.end(), stress_[p].data(), stress_[p].data() + 9);
+    owned.push_back(steps);
+    owned.push_back(MPI_Wtime() - start);
   }
+  return owned;
+}
+
+std::vector<double> DemRveMaterial::predict_steps(const std::vector<long>& batch_index,
+                                                  const std::vector<Mat3>& increments) const {
+  std::vector<double> steps(points_, 0.0);
+  for (std::size_t p = 0; p < points_; ++p) {
+    if (batch_index[p] >= 0)
+      steps[p] = rve::predicted_substeps(spec_, increments[batch_index[p]], dem_pressure_[p]);
+  }
+  return steps;
+}
+
+std::vector<double> DemRveMaterial::work_of(const std::vector<double>& steps,
+                                            const std::vector<long>& batch_index) const {
+  std::vector<double> work(points_, 0.0);
+  for (std::size_t p = 0; p < points_; ++p) {
+    if (batch_index[p] >= 0)
+      work[p] = (steps[p] + balance_spec_.update_cost) * static_cast<double>(spec_.grains);
+  }
+  return work;
+}
+
+void DemRveMaterial::rebalance(const std::vector<double>& predicted_work) {
+  if (!balance_spec_.enabled || layout_->groups() < 2)
+    return;
+  // Replicated costs and owners only: every rank plans the same moves, and so does a resume.
+  const BalancePlan plan = plan_moves(predicted_work, layout_->owners(), layout_->groups(),
+                                      balance_spec_.threshold, balance_spec_.horizon,
+                                      balance_spec_.move_cost * static_cast<double>(spec_.grains));
+  if (plan.moves == 0)
+    return;
+  migrate(plan.owner);
+  migrations_ += static_cast<double>(plan.moves);
+  rebalances_ += 1.0;
+}
+
+void DemRveMaterial::migrate(const std::vector<int>& owners) {
+  const double start = MPI_Wtime();
+  const std::vector<int> before = layout_->owners();
+  const int group = layout_->group();
+  const std::string folder = work_dir_ + "/migration";
+  if (rank_ == 0)
+    std::filesystem::create_directories(folder);
+  MPI_Barrier(comm_);
+  // An RVE moves through its checkpoint files (engine restart and exact placement) and its
+  // Rve::State: the new owner continues it bit-identically (docs/DESIGN.md §10). All leaving
+  // RVEs are written first, so the groups write in parallel, then read in parallel.
+  const auto file = [&](std::size_t p) { return checkpoint_file(folder, p); };
+  std::vector<std::size_t> moving;
+  for (std::size_t p = 0; p < points_; ++p) {
+    if (owners[p] != before[p])
+      moving.push_back(p);
+  }
+  std::vector<std::array<double, kRveStateValues>> states(moving.size());
+  for (std::size_t k = 0; k < moving.size(); ++k) {
+    const std::size_t p = moving[k];
+    if (before[p] != group)
+      continue;
+    const rve::Rve::State st =
+        or_end_job(point_label(p) + ": not moved to rank group " + std::to_string(owners[p]),
+                   [&] { return send_rve(*rves_[p], file(p)); });
+    pack_state(st, states[k].data());
+    rves_[p].reset();
+  }
+  // The owner's leader sends the state once its files are written (and checked).
+  for (std::size_t k = 0; k < moving.size(); ++k)
+    MPI_Bcast(states[k].data(), kRveStateValues, MPI_DOUBLE, before[moving[k]] * ranks_per_rve_,
+              comm_);
+  layout_->reassign(owners);
+  for (std::size_t k = 0; k < moving.size(); ++k) {
+    const std::size_t p = moving[k];
+    if (owners[p] != group)
+      continue;
+    rves_[p] =
+        or_end_job(point_label(p) + " not moved from rank group " + std::to_string(before[p]), [&] {
+          return receive_rve(spec_, file(p), unpack_state(states[k].data()), layout_->group_comm(),
+                             point_label(p));
+        });
+  }
+  cost_.stepping.migration_seconds += MPI_Wtime() - start;
+}
+
+void DemRveMaterial::account(const std::vector<double>& predicted_steps,
+                             const std::vector<double>& seconds,
+                             const std::vector<long>& batch_index) {
+  const std::vector<int>& owners = layout_->owners();
+  const int groups = layout_->groups();
+  predicted_totals_.add(work_of(predicted_steps, batch_index), owners, groups);
+  work_totals_.add(work_of(substeps_, batch_index), owners, groups);
+  seconds_totals_.add(seconds, owners, groups);
+  if (!record_)
+    return;
+  record_->add(updates_, groups, predicted_steps, substeps_, seconds, owners);
+  if (record_->buffered() >= 100)
+    or_end_job(path_ + ": the cost record not written", [&] { record_->flush(); });
+}
+
+void DemRveMaterial::start_cost_record(bool resumed) {
+  if (rank_ != 0 || work_dir_.empty())
+    return;
+  record_ =
+      std::make_unique<CostRecord>(work_dir_ + "/cost_record.h5", points_,
+                                   static_cast<double>(spec_.grains), balance_spec_.update_cost);
+  or_end_job(path_ + ": the cost record not started", [&] {
+    std::filesystem::create_directories(work_dir_);
+    if (resumed)
+      record_->continue_after(updates_);
+    else
+      record_->create();
+  });
 }
 
 std::vector<Mat3> DemRveMaterial::dem_increments(const std::vector<std::size_t>& points,
@@ -353,19 +488,29 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
   // The stresses before the update, the same on every rank (deform_owned overwrites the owned
   // points' entries: taken after it, the low-stress share would depend on the rank count).
   const std::vector<Mat3> before = stress_;
+  const std::vector<double> predicted = predict_steps(batch_index, increments);
+  rebalance(work_of(predicted, batch_index));
   const double start = MPI_Wtime();
-  std::vector<Mat3> owned_stress;
-  std::vector<double> owned_steps;
-  deform_owned(batch_index, increments, owned_stress, owned_steps);
+  const std::vector<double> owned = deform_owned(batch_index, increments);
   const double computed = MPI_Wtime();
-  stress_ = layout_->gather(owned_stress);
-  substeps_ = layout_->gather(owned_steps, 1);
+  // One exchange: stress (9), DEM steps, seconds of every point.
+  constexpr int kWidth = 11;
+  const std::vector<double> all = layout_->gather(owned, kWidth);
+  std::vector<double> seconds(points_);
+  for (std::size_t p = 0; p < points_; ++p) {
+    stress_[p] = Eigen::Map<const Mat3>(&all[p * kWidth]);
+    substeps_[p] = all[p * kWidth + 9];
+    seconds[p] = all[p * kWidth + 10];
+    if (batch_index[p] >= 0)
+      dem_pressure_[p] = mean_pressure(stress_[p], spec_.dimension);  // as Rve::stress()
+  }
   settle_quiet_points(points, batch_index);
   for (std::size_t i = 0; i < points.size(); ++i)
     work_.add(points[i], substeps_[points[i]], mean_pressure(before[points[i]], spec_.dimension),
               increments[i]);
   cost_.compute_seconds += computed - start;
   cost_.communication_seconds += MPI_Wtime() - computed;
+  account(predicted, seconds, batch_index);
   // Every rank knows every RVE's step count: the total needs no reduction.
   for (const double steps : substeps_)
     cost_.particle_steps += steps * static_cast<double>(spec_.grains);
@@ -382,10 +527,6 @@ const char* const kQuietStatNames[QuietPoints::kStatValues] = {
     "continuum_updates",  "continuum_switches",       "continuum_jump_sum",
     "continuum_max_jump", "continuum_jumps_exceeded", "continuum_threshold_scale"};
 
-std::string checkpoint_file(const std::string& dir, std::size_t point) {
-  return dir + "/point_" + std::to_string(point) + ".restart";
-}
-
 }  // namespace
 
 void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::size_t points) {
@@ -396,7 +537,7 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
                            std::to_string(points_));
   std::vector<double> owned;
   for (const std::size_t p : layout_->owned()) {
-    rve::Rve& rve = *rves_[layout_->local_index(p)];
+    rve::Rve& rve = *rves_[p];
     or_end_job(point_label(p) + ": checkpoint not written (the previous one is kept)",
                [&] { rve.write_checkpoint(checkpoint_file(out.folder(), p)); });
     PointCheckpoint saved{stress_[p], substeps_[p], rve.state()};
@@ -411,6 +552,17 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
   quiet_.save_stats(stats);
   for (int k = 0; k < QuietPoints::kStatValues; ++k)
     out.set(kQuietStatNames[k], stats[k]);
+  // Where the RVEs are, so that a resume on as many groups makes the balancer's decisions
+  // again; and the stepping totals so far.
+  std::vector<double> owners{static_cast<double>(layout_->groups())};
+  owners.insert(owners.end(), layout_->owners().begin(), layout_->owners().end());
+  out.write(kOwnersName, owners);
+  out.write(kSteppingName,
+            {predicted_totals_.work, predicted_totals_.makespan, predicted_totals_.bound,
+             work_totals_.work, work_totals_.makespan, work_totals_.bound, seconds_totals_.work,
+             seconds_totals_.makespan, seconds_totals_.bound, migrations_, rebalances_});
+  if (record_)
+    or_end_job(path_ + ": the cost record not written", [&] { record_->flush(); });
 }
 
 void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
@@ -421,23 +573,42 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
   const std::vector<double> rows = read_points(in, points_);
   const double start = MPI_Wtime();
   layout_ = std::make_unique<RveLayout>(comm_, ranks_per_rve_, points_);
+  if (in.has(kOwnersName)) {
+    // The owners of the checkpoint when the groups are as many; dealt out otherwise.
+    const std::vector<double> saved = in.read(kOwnersName);
+    if (saved.size() == points_ + 1 && saved[0] == static_cast<double>(layout_->groups()))
+      layout_->reassign(std::vector<int>(saved.begin() + 1, saved.end()));
+  }
+  if (in.has(kSteppingName)) {
+    const std::vector<double> t = in.read(kSteppingName);
+    if (t.size() == 3 * StepTotals::kValues + 2) {
+      predicted_totals_.load(&t[0]);
+      work_totals_.load(&t[3]);
+      seconds_totals_.load(&t[6]);
+      migrations_ = t[9];
+      rebalances_ = t[10];
+    }
+  }
   stress_.resize(points_);
   substeps_.resize(points_);
+  dem_pressure_.resize(points_);
   rves_.clear();
+  rves_.resize(points_);
   start_work_ledger();
   for (std::size_t p = 0; p < points_; ++p) {
     const PointCheckpoint saved = unpack(rows.data() + p * point_checkpoint_width());
     stress_[p] = saved.stress;
     substeps_[p] = saved.substeps;
+    dem_pressure_[p] = saved.rve.last_mean_stress;
     work_.restore_row(p, saved.work);
     quiet_.restore_row(p, saved.quiet);
     if (!layout_->owns(p))
       continue;
-    rves_.push_back(or_end_job(in.describe() + ": " + point_label(p) + " not restored", [&] {
+    rves_[p] = or_end_job(in.describe() + ": " + point_label(p) + " not restored", [&] {
       return rve::Rve::from_checkpoint(spec_, checkpoint_file(in.folder(), p),
                                        layout_->group_comm(), point_label(p));
-    }));
-    rves_.back()->restore(saved.rve);
+    });
+    rves_[p]->restore(saved.rve);
   }
   updates_ = static_cast<long>(in.get("updates"));
   double stats[QuietPoints::kStatValues];
@@ -446,6 +617,7 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
   quiet_.restore_stats(stats);
   cost_.simulations = points_;
   cost_.particle_steps = in.get("particle_steps");
+  start_cost_record(true);
   cost_.preparation_seconds += MPI_Wtime() - start;
 }
 
@@ -466,7 +638,7 @@ void DemRveMaterial::write_snapshot(std::size_t point, const std::string& prefix
   if (!layout_)
     create_rves();
   if (layout_->owns(point))
-    rve::write_snapshot(*rves_[layout_->local_index(point)], prefix, layout_->group_leader());
+    rve::write_snapshot(*rves_[point], prefix, layout_->group_leader());
 }
 
 materials::MaterialCost DemRveMaterial::cost() const {
@@ -477,6 +649,20 @@ materials::MaterialCost DemRveMaterial::cost() const {
   const QuietStats& q = quiet_.stats();
   if (quiet_.quiet_enabled())
     c.quiet = {true, q.predictions, q.dem_updates, q.checks, q.error_sum, q.max_error, q.exceeded};
+  if (layout_) {
+    materials::SteppingCost& t = c.stepping;
+    t.enabled = true;
+    t.groups = layout_->groups();
+    t.work_predicted = predicted_totals_.work;
+    t.makespan_predicted = predicted_totals_.makespan;
+    t.work = work_totals_.work;
+    t.makespan = work_totals_.makespan;
+    t.bound = work_totals_.bound;
+    t.seconds = seconds_totals_.work;
+    t.makespan_seconds = seconds_totals_.makespan;
+    t.migrations = migrations_;
+    t.rebalances = rebalances_;
+  }
   if (quiet_.continuum_start_enabled())
     c.continuum_start = {true,       q.continuum_updates, q.switches,       q.jump_sum,
                          q.max_jump, q.jumps_exceeded,    q.threshold_scale};

@@ -4,8 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "coupling/cost_record.h"
 #include "coupling/dem_work.h"
 #include "coupling/quiet_points.h"
+#include "coupling/rve_balance.h"
 #include "coupling/rve_layout.h"
 #include "materials/material.h"
 #include "rve/rve.h"
@@ -25,11 +27,14 @@ struct Packing {
 //! The material law of a point is its own DEM packing (the "dem_rve" material).
 //!
 //! Case node: {"type": "dem_rve", "rve": {RVE spec}, "packings": K, "ranks_per_rve": g,
-//! "quiet": {QuietSpec}, "start_as_continuum": {ContinuumStartSpec}}.
+//! "quiet": {QuietSpec}, "start_as_continuum": {ContinuumStartSpec}, "balance": {BalanceSpec}}.
 //! `prepare()` consolidates K packings (seeds rve.seed + k) or takes `rve.restart_file`;
 //! point i is cloned from packing i mod K. The MPM is replicated on every rank, so every
 //! rank calls update() with the same batch; each rank group deforms the RVEs it owns and
-//! the stresses are gathered to all ranks in point order (RveLayout).
+//! the stresses are gathered to all ranks in point order (RveLayout). Before an update the
+//! balancer may move RVEs between groups by their predicted costs (rve_balance.h); a move
+//! goes through the checkpoint files of the RVE, so results do not depend on it. Every
+//! update's costs go to the cost record (cost_record.h).
 //!
 //! Test-only fault injection (MaterialContext::hooks, from MPM_LIG_FAULT_POINT=i and
 //! MPM_LIG_FAULT_UPDATE=u at start-up): the rank that owns point i sends its engine an unknown
@@ -94,8 +99,22 @@ class DemRveMaterial final : public materials::Material {
   //! After the stresses are gathered: checks and predicted stresses of the quiet points.
   void settle_quiet_points(const std::vector<std::size_t>& points,
                            const std::vector<long>& batch_index);
-  void deform_owned(const std::vector<long>& batch_index, const std::vector<Mat3>& dF,
-                    std::vector<Mat3>& owned_stress, std::vector<double>& owned_steps);
+  //! Deform the owned RVEs; per owned point its stress (9), DEM steps and seconds.
+  std::vector<double> deform_owned(const std::vector<long>& batch_index,
+                                   const std::vector<Mat3>& dF);
+  //! Every point's predicted DEM steps of this update (0 for those that run none).
+  std::vector<double> predict_steps(const std::vector<long>& batch_index,
+                                    const std::vector<Mat3>& increments) const;
+  //! The work of the points in particle-steps, an update's fixed cost included.
+  std::vector<double> work_of(const std::vector<double>& steps,
+                              const std::vector<long>& batch_index) const;
+  //! Move RVEs to other groups when the predicted costs say it pays (collective).
+  void rebalance(const std::vector<double>& predicted_work);
+  //! Give every point to `owners[point]`, moving the RVEs that change group (collective).
+  void migrate(const std::vector<int>& owners);
+  void account(const std::vector<double>& predicted_steps, const std::vector<double>& seconds,
+               const std::vector<long>& batch_index);
+  void start_cost_record(bool resumed);
   void inject_fault_if_asked(std::size_t point, rve::Rve& rve) const;
   std::size_t packing_of(std::size_t point) const { return point % packings_.size(); }
   std::string point_label(std::size_t point) const;
@@ -110,13 +129,20 @@ class DemRveMaterial final : public materials::Material {
   std::vector<Packing> packings_;
   std::size_t points_ = 0;
   std::unique_ptr<RveLayout> layout_;
-  std::vector<std::unique_ptr<rve::Rve>> rves_;  //!< the owned RVEs, by layout.local_index()
+  std::vector<std::unique_ptr<rve::Rve>> rves_;  //!< by point; null where another group owns it
   std::vector<Mat3> stress_;                     //!< every point's last stress (all ranks)
   std::vector<double> substeps_;                 //!< every point's last DEM step count
-  DemWork work_;                                 //!< every point's DEM work (all ranks)
+  std::vector<double> dem_pressure_;  //!< every RVE's mean stress as it knows it (Rve::State)
+  DemWork work_;                      //!< every point's DEM work (all ranks)
   QuietSpec quiet_spec_;
   ContinuumStartSpec continuum_start_spec_;
   QuietPoints quiet_;  //!< every point's quiet state (all ranks)
+  BalanceSpec balance_spec_;
+  std::string work_dir_;
+  std::unique_ptr<CostRecord> record_;  //!< rank 0's
+  StepTotals predicted_totals_, work_totals_, seconds_totals_;
+  double migrations_ = 0.0;
+  double rebalances_ = 0.0;
   long updates_ = 0;
   int rank_ = 0;
   materials::MaterialCost cost_;

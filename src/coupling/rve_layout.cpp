@@ -19,7 +19,22 @@ RveLayout::RveLayout(MPI_Comm world, int ranks_per_rve, std::size_t rve_count)
   group_ = world_rank_ / ranks_per_rve;
   MPI_Comm_split(world, group_, world_rank_, &group_comm_);
   MPI_Comm_rank(group_comm_, &group_rank_);
-  owned_ = owned(group_);
+  owner_.resize(rve_count);
+  for (std::size_t r = 0; r < rve_count; ++r)
+    owner_[r] = static_cast<int>(r % static_cast<std::size_t>(groups_));
+  index_groups();
+}
+
+void RveLayout::reassign(const std::vector<int>& owners) {
+  if (owners.size() != rve_count_)
+    throw std::invalid_argument("RveLayout::reassign: " + std::to_string(owners.size()) +
+                                " owners for " + std::to_string(rve_count_) + " RVEs");
+  for (const int g : owners) {
+    if (g < 0 || g >= groups_)
+      throw std::invalid_argument("RveLayout::reassign: no rank group " + std::to_string(g));
+  }
+  owner_ = owners;
+  index_groups();
 }
 
 RveLayout::~RveLayout() {
@@ -31,23 +46,17 @@ RveLayout::~RveLayout() {
 
 std::vector<std::size_t> RveLayout::owned(int group) const {
   std::vector<std::size_t> rves;
-  for (std::size_t r = static_cast<std::size_t>(group); r < rve_count_;
-       r += static_cast<std::size_t>(groups_))
-    rves.push_back(r);
+  for (std::size_t r = 0; r < rve_count_; ++r) {
+    if (owner_[r] == group)
+      rves.push_back(r);
+  }
   return rves;
 }
 
 int RveLayout::owner(std::size_t rve) const {
   if (rve >= rve_count_)
     throw std::out_of_range("RVE index " + std::to_string(rve) + " out of range");
-  return static_cast<int>(rve % static_cast<std::size_t>(groups_));
-}
-
-std::size_t RveLayout::local_index(std::size_t rve) const {
-  if (!owns(rve))
-    throw std::logic_error("RVE " + std::to_string(rve) + " is not owned by group " +
-                           std::to_string(group_));
-  return rve / static_cast<std::size_t>(groups_);
+  return owner_[rve];
 }
 
 std::vector<double> RveLayout::gather(const std::vector<double>& owned_values, int width) const {
@@ -61,7 +70,7 @@ std::vector<double> RveLayout::gather(const std::vector<double>& owned_values, i
   std::vector<int> counts(world_size_, 0), offsets(world_size_, 0);
   int offset = 0;
   for (int r = 0; r < world_size_; r += ranks_per_rve_) {
-    counts[r] = static_cast<int>(owned(r / ranks_per_rve_).size() * w);
+    counts[r] = static_cast<int>(group_sizes_[r / ranks_per_rve_] * w);
     offsets[r] = offset;
     offset += counts[r];
   }
@@ -70,14 +79,21 @@ std::vector<double> RveLayout::gather(const std::vector<double>& owned_values, i
   MPI_Allgatherv(owned_values.data(), send, MPI_DOUBLE, by_group.data(), counts.data(),
                  offsets.data(), MPI_DOUBLE, world_);
   std::vector<double> all(rve_count_ * w);
-  std::size_t next = 0;
-  for (int g = 0; g < groups_; ++g) {
-    for (const std::size_t rve : owned(g)) {
-      std::copy_n(&by_group[next], w, &all[rve * w]);
-      next += w;
-    }
-  }
+  for (std::size_t k = 0; k < rve_count_; ++k)
+    std::copy_n(&by_group[k * w], w, &all[by_group_order_[k] * w]);
   return all;
+}
+
+void RveLayout::index_groups() {
+  owned_ = owned(group_);
+  group_sizes_.assign(static_cast<std::size_t>(groups_), 0);
+  for (const int g : owner_)
+    ++group_sizes_[static_cast<std::size_t>(g)];
+  by_group_order_.resize(rve_count_);
+  for (std::size_t r = 0; r < rve_count_; ++r)
+    by_group_order_[r] = r;
+  std::stable_sort(by_group_order_.begin(), by_group_order_.end(),
+                   [&](std::size_t a, std::size_t b) { return owner_[a] < owner_[b]; });
 }
 
 std::vector<Mat3> RveLayout::gather(const std::vector<Mat3>& owned) const {

@@ -48,6 +48,20 @@ struct ContinuumStartCost {
   double points = 0.0;           //!< points of the materials with a continuum start
 };
 
+//! How busy the rank groups of a material's simulations were, step by step (replicated: the
+//! same on every rank except migration_seconds, this rank's). Work is in DEM particle-steps,
+//! an update's fixed cost included; efficiency = work / (groups × makespan).
+struct SteppingCost {
+  bool enabled = false;
+  double groups = 0.0;
+  double work_predicted = 0.0, makespan_predicted = 0.0;  //!< from the predicted costs
+  double work = 0.0, makespan = 0.0, bound = 0.0;         //!< from the measured steps
+  double seconds = 0.0, makespan_seconds = 0.0;           //!< the owners' measured times
+  double migrations = 0.0;                                //!< RVEs moved to another group
+  double rebalances = 0.0;                                //!< updates before which RVEs moved
+  double migration_seconds = 0.0;  //!< this rank's time moving them (waits included)
+};
+
 //! Cost counters of a material whose points run simulations of their own (DEM RVEs). The
 //! same on every rank except the times, which are this rank's.
 struct MaterialCost {
@@ -61,6 +75,7 @@ struct MaterialCost {
   double particle_steps_quiet = 0.0;       //!< in updates with |dF - 1| < 1e-5
   PredictionCost quiet;
   ContinuumStartCost continuum_start;
+  SteppingCost stepping;
 };
 
 //! The constitutive side of a material point, seen by the MPM solver.

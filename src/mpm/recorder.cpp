@@ -93,6 +93,10 @@ void append_simple_shear(const Solver<D>& solver, const SimpleShearOutput& shear
 
 }  // namespace
 
+double stepping_efficiency(const materials::SteppingCost& s) {
+  return s.makespan > 0.0 ? s.work / (s.groups * s.makespan) : 1.0;
+}
+
 materials::MaterialCost total_cost(const MaterialSet& materials) {
   materials::MaterialCost total;
   for (std::size_t m = 0; m < materials.size(); ++m) {
@@ -125,6 +129,23 @@ materials::MaterialCost total_cost(const MaterialSet& materials) {
       t.max_jump = std::max(t.max_jump, c.continuum_start.max_jump);
       t.jumps_exceeded += c.continuum_start.jumps_exceeded;
       t.points += static_cast<double>(c.simulations);
+    }
+    if (c.stepping.enabled) {
+      // Materials update one after the other within a step: their works and makespans add.
+      materials::SteppingCost& t = total.stepping;
+      const materials::SteppingCost& m = c.stepping;
+      t.enabled = true;
+      t.groups = std::max(t.groups, m.groups);
+      t.work_predicted += m.work_predicted;
+      t.makespan_predicted += m.makespan_predicted;
+      t.work += m.work;
+      t.makespan += m.makespan;
+      t.bound += m.bound;
+      t.seconds += m.seconds;
+      t.makespan_seconds += m.makespan_seconds;
+      t.migrations += m.migrations;
+      t.rebalances += m.rebalances;
+      t.migration_seconds += m.migration_seconds;
     }
   }
   return total;
@@ -261,14 +282,16 @@ void Recorder<D>::print_progress(const Solver<D>& solver) {
   const double interval = seconds_since(last_);
   const double rate = (solver.steps() - last_step_) / std::max(interval, 1e-9);
   const double eta = (total_steps_ - solver.steps()) / std::max(rate, 1e-9);
-  const double particle_steps = total_cost(solver.materials()).particle_steps;
+  const materials::MaterialCost cost = total_cost(solver.materials());
+  const double particle_steps = cost.particle_steps;
   if (particle_steps > 0.0) {
     // Summed over all ranks: every rank knows every RVE's step count.
     const double dem_rate = (particle_steps - last_particle_steps_) / std::max(interval, 1e-9);
     std::printf(
         "mpm step %ld/%ld  t = %.6g s  %.3g steps/s  DEM %.3g M particle-steps/s  "
-        "ETA %.1f s\n",
-        solver.steps(), total_steps_, solver.time(), rate, dem_rate * 1e-6, eta);
+        "stepping efficiency %.3f  ETA %.1f s\n",
+        solver.steps(), total_steps_, solver.time(), rate, dem_rate * 1e-6,
+        stepping_efficiency(cost.stepping), eta);
   } else {
     std::printf("mpm step %ld/%ld  t = %.6g s  %.0f steps/s  ETA %.1f s\n", solver.steps(),
                 total_steps_, solver.time(), rate, eta);
@@ -305,7 +328,27 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
       most = std::max(most, t);
     }
     s["dem_seconds_per_rank"] = per_rank;
+    // Of whole-run times: blind to the waiting of each step, which "stepping" shows.
     s["load_imbalance"] = sum > 0.0 ? most * static_cast<double>(per_rank.size()) / sum : 1.0;
+  }
+  if (cost.stepping.enabled && cost.particle_steps > 0.0) {
+    const materials::SteppingCost& t = cost.stepping;
+    const auto efficiency = [&](double work, double makespan) {
+      return makespan > 0.0 ? work / (t.groups * makespan) : 1.0;
+    };
+    // The mean group's waiting for the busiest one, step by step (from the owners' times).
+    const double waiting = t.makespan_seconds - t.seconds / t.groups;
+    s["stepping"] = {
+        {"rank_groups", t.groups},
+        {"efficiency", stepping_efficiency(t)},
+        {"efficiency_predicted", efficiency(t.work_predicted, t.makespan_predicted)},
+        {"efficiency_seconds", efficiency(t.seconds, t.makespan_seconds)},
+        {"efficiency_bound", efficiency(t.work, t.bound)},
+        {"waiting_seconds", waiting},
+        {"waiting_share", totals.wall_seconds > 0.0 ? waiting / totals.wall_seconds : 0.0},
+        {"migrations", t.migrations},
+        {"rebalances", t.rebalances},
+        {"migration_seconds", t.migration_seconds}};
   }
   if (cost.particle_steps > 0.0)
     s["dem_work_shares"] = {

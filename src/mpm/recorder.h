@@ -23,6 +23,8 @@ struct RunTotals {
 
 //! The materials' cost counters added up (DEM RVEs; zero for continuum materials).
 materials::MaterialCost total_cost(const MaterialSet& materials);
+//! Σ work / (groups × Σ_steps busiest group's work) of measured particle-steps (1 without any).
+double stepping_efficiency(const materials::SteppingCost& s);
 
 //! What an MPM run writes into its output folder: history.csv (every `history_every`
 //! steps), results.h5/.xdmf (every `output_every` steps), one progress line per output

@@ -192,17 +192,29 @@ void Rve::restore(const State& s) {
   last_mean_stress_ = s.last_mean_stress;
 }
 
-int Rve::substeps_for(const Mat3& effective_increment) {
-  const SubstepSpec& s = spec_.substeps;
+int substeps_for_increment(const RveSpec& spec, const Mat3& effective_increment,
+                           double mean_stress) {
+  const SubstepSpec& s = spec.substeps;
   if (s.fixed > 0)
     return s.fixed;
   // Inertial number I = γ̇ d sqrt(ρ/p), with γ̇ = |ΔF_eff - I| / (n Δt) (docs/DESIGN.md §8).
   const double strain = (effective_increment - Mat3::Identity()).norm();
-  const double p = std::max(std::abs(last_mean_stress_), s.pressure_floor);
-  const double d = 2.0 * spec_.radius.mean();
-  const double n =
-      strain * d * std::sqrt(spec_.density / p) / (s.inertial_number * spec_.time_step);
+  const double p = std::max(std::abs(mean_stress), s.pressure_floor);
+  const double d = 2.0 * spec.radius.mean();
+  const double n = strain * d * std::sqrt(spec.density / p) / (s.inertial_number * spec.time_step);
   return static_cast<int>(std::min<double>(s.max, std::max<double>(s.min, std::ceil(n))));
+}
+
+int predicted_substeps(const RveSpec& spec, const Mat3& dF, double mean_stress) {
+  if (spec.substeps.fixed > 0)
+    return spec.substeps.fixed;
+  // An RVE whose frame is the physical one and whose box is rectangular: the box's own
+  // increment is the triangular factor of dF (the rotation taken out).
+  return substeps_for_increment(spec, box_step(dF, Mat3::Identity()).target, mean_stress);
+}
+
+int Rve::substeps_for(const Mat3& effective_increment) {
+  return substeps_for_increment(spec_, effective_increment, last_mean_stress_);
 }
 
 // Streaming velocity: the box's affine velocity field in the grains (docs/DESIGN.md §2.4).

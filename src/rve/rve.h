@@ -18,6 +18,15 @@ namespace mpm_lig::rve {
 //! the physical frame is kept here. A physical increment ΔF becomes ΔF' = Qᵀ ΔF Q, split as
 //! ΔF'·h = Q_inc·R_new; the box is driven to R_new with `fix deform … final`, and Q ← Q·Q_inc.
 //! All calls are collective over the RVE's communicator.
+//! DEM steps of an update of box increment `effective_increment` (rotation taken out) at
+//! mean stress `mean_stress`, by the spec's sub-stepping rule (docs/DESIGN.md §8).
+int substeps_for_increment(const RveSpec& spec, const Mat3& effective_increment,
+                           double mean_stress);
+//! The DEM steps an RVE of `spec` at mean stress `mean_stress` is expected to run for the
+//! physical increment `dF`: exact for an RVE whose frame is the physical one and whose box is
+//! rectangular, an estimate otherwise. Needs no RVE, so every rank can predict every point.
+int predicted_substeps(const RveSpec& spec, const Mat3& dF, double mean_stress);
+
 class Rve {
  public:
   //! A fresh loose packing generated from `spec` (not yet consolidated: see consolidate()).

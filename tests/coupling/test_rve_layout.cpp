@@ -35,8 +35,8 @@ void check_layout(int ranks_per_rve, std::size_t rves) {
       EXPECT_EQ(owners[share[i]], -1) << "RVE " << share[i] << " owned twice";
       owners[share[i]] = g;
       EXPECT_EQ(layout.owner(share[i]), g);
-      if (g == layout.group()) {
-        EXPECT_EQ(layout.local_index(share[i]), i);
+      if (i > 0) {
+        EXPECT_LT(share[i - 1], share[i]);
       }
     }
   }
@@ -68,6 +68,30 @@ TEST(RveLayout, OneRankPerRve) {
 
 TEST(RveLayout, WholeWorldPerRve) {
   check_layout(world_size(), 5);
+}
+
+TEST(RveLayout, ReassignedRvesAreGatheredInRveOrder) {
+  // Owners in an order unlike the dealt one (the last group gets RVEs 0 and 1, group 0 the
+  // rest): a gather that kept the dealt order would put tags in the wrong places.
+  const std::size_t rves = 9;
+  RveLayout layout(MPI_COMM_WORLD, 1, rves);
+  std::vector<int> owners(rves, 0);
+  owners[0] = owners[1] = layout.groups() - 1;
+  if (layout.groups() > 2)
+    owners[7] = 1;
+  layout.reassign(owners);
+  EXPECT_EQ(layout.owners(), owners);
+  std::vector<Mat3> owned;
+  for (const std::size_t r : layout.owned()) {
+    EXPECT_EQ(owners[r], layout.group());
+    owned.push_back(tag(r));
+  }
+  const std::vector<Mat3> all = layout.gather(owned);
+  for (std::size_t r = 0; r < rves; ++r)
+    EXPECT_EQ(all[r], tag(r)) << "RVE " << r;
+  owners[3] = layout.groups();
+  EXPECT_THROW(layout.reassign(owners), std::invalid_argument);
+  EXPECT_THROW(layout.reassign(std::vector<int>(rves - 1, 0)), std::invalid_argument);
 }
 
 TEST(RveLayout, MoreGroupsThanRves) {

@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "rve/consolidation.h"
 #include "rve/rve.h"
+#include "test_packing.h"
 #include "test_rve_spec.h"
 
 using namespace mpm_lig;
@@ -34,14 +34,8 @@ void check_checkpoint_is_free_of_effect(const std::string& engine) {
   json["substeps"] = {{"fixed", 30}};
   const rve::RveSpec spec = test::parse_rve(json);
   const std::string dir = std::string(MPM_LIG_BINARY_DIR) + "/test_rve_checkpoint_" + engine;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const std::string packing = dir + "/packing.restart", checkpoint = dir + "/point.restart";
-  {
-    auto prepared = rve::Rve::generate(spec, MPI_COMM_WORLD, "prepared");
-    rve::consolidate(*prepared);
-    prepared->write_restart(packing);
-  }
+  const std::string packing = test::consolidated_packing(spec, dir);
+  const std::string checkpoint = dir + "/point.restart";
   auto plain = rve::Rve::from_restart(spec, packing, MPI_COMM_WORLD, "plain");
   auto written = rve::Rve::from_restart(spec, packing, MPI_COMM_WORLD, "checkpointed");
   for (int k = 0; k < 5; ++k) {

@@ -1,0 +1,86 @@
+// The balancer's plans and the stepping totals against loads worked out by hand.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "coupling/rve_balance.h"
+
+using mpm_lig::coupling::BalancePlan;
+using mpm_lig::coupling::group_loads;
+using mpm_lig::coupling::lpt_owners;
+using mpm_lig::coupling::plan_moves;
+using mpm_lig::coupling::StepTotals;
+
+namespace {
+
+double makespan(const std::vector<double>& cost, const std::vector<int>& owner, int groups) {
+  const std::vector<double> load = group_loads(cost, owner, groups);
+  return *std::max_element(load.begin(), load.end());
+}
+
+}  // namespace
+
+TEST(RveBalance, MovesThePointClosestToHalfTheDifference) {
+  // Group 0 carries 10 + 1 + 8 = 19, group 1 carries 3: moving the 8 evens them at 11.
+  const std::vector<double> cost{10, 1, 1, 1, 8, 1};
+  const std::vector<int> owner{0, 1, 0, 1, 0, 1};
+  const BalancePlan plan = plan_moves(cost, owner, 2, 0.0, 1, 0.0);
+  EXPECT_EQ(plan.moves, 1u);
+  EXPECT_EQ(plan.makespan_before, 19.0);
+  EXPECT_EQ(plan.makespan_after, 11.0);
+  std::vector<int> expected = owner;
+  expected[4] = 1;
+  EXPECT_EQ(plan.owner, expected);
+  EXPECT_EQ(makespan(cost, plan.owner, 2), plan.makespan_after);
+}
+
+TEST(RveBalance, MovesOnlyWhenTheGainPaysAndTheImbalanceIsAboveTheThreshold) {
+  const std::vector<double> cost{10, 1, 1, 1, 8, 1};
+  const std::vector<int> owner{0, 1, 0, 1, 0, 1};
+  // Gain 19 - 11 = 8 per update: over 2 updates 16 > 15, not > 16.
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 2, 15.0).moves, 1u);
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 2, 16.0).moves, 0u);
+  // max/mean - 1 = 19 / 11 - 1 = 0.727.
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.72, 1, 0.0).moves, 1u);
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.73, 1, 0.0).moves, 0u);
+  EXPECT_EQ(plan_moves(cost, owner, 1, 0.0, 1, 0.0).moves, 0u);
+  EXPECT_EQ(plan_moves(std::vector<double>(6, 0.0), owner, 2, 0.0, 1, 0.0).moves, 0u);
+}
+
+TEST(RveBalance, TiedBusiestGroupsAreBothRelieved) {
+  // Groups 0 and 1 at 6, group 2 empty: one move gains nothing, two reach 4, 4, 4.
+  const std::vector<double> cost{4, 4, 2, 2};
+  const std::vector<int> owner{0, 1, 0, 1};
+  const BalancePlan plan = plan_moves(cost, owner, 3, 0.0, 1, 0.5);
+  EXPECT_EQ(plan.moves, 2u);
+  EXPECT_EQ(plan.makespan_after, 4.0);
+  EXPECT_EQ(makespan(cost, plan.owner, 3), 4.0);
+  // At a move cost of 1 per point the two moves gain 2 - 2 = 0: none.
+  EXPECT_EQ(plan_moves(cost, owner, 3, 0.0, 1, 1.0).moves, 0u);
+}
+
+TEST(RveBalance, LongestProcessingTimeFirstKnownCase) {
+  // The textbook case where LPT ends at 10 while 9 ({5, 4}, {3, 3, 3}) is optimal.
+  const std::vector<double> cost{3, 5, 3, 4, 3};
+  const std::vector<int> owner = lpt_owners(cost, 2);
+  EXPECT_EQ(makespan(cost, owner, 2), 10.0);
+  EXPECT_EQ(owner[1], 0);  // the costliest first, to the lowest group
+  EXPECT_EQ(owner[3], 1);
+}
+
+TEST(RveBalance, StepTotals) {
+  StepTotals t;
+  t.add({3, 1}, {0, 1}, 2);  // work 4, busiest 3, bound max(3, 2) = 3
+  t.add({1, 1}, {0, 0}, 2);  // work 2, busiest 2, bound max(1, 1) = 1
+  EXPECT_EQ(t.work, 6.0);
+  EXPECT_EQ(t.makespan, 5.0);
+  EXPECT_EQ(t.bound, 4.0);
+  EXPECT_DOUBLE_EQ(t.efficiency(2), 6.0 / 10.0);
+  EXPECT_DOUBLE_EQ(t.bound_efficiency(2), 6.0 / 8.0);
+  double saved[StepTotals::kValues];
+  t.save(saved);
+  StepTotals u;
+  u.load(saved);
+  EXPECT_EQ(u.makespan, t.makespan);
+  EXPECT_EQ(StepTotals{}.efficiency(4), 1.0);
+}
