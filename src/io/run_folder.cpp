@@ -21,9 +21,9 @@ namespace fs = std::filesystem;
 constexpr const char* kResults[] = {"summary.json", "history.csv", "results.h5",
                                     "results.xdmf", "snapshots",   "checkpoints/latest"};
 //! What --replace removes: the results and what else a run writes.
-constexpr const char* kRunOutputs[] = {"summary.json",     "history.csv",   "results.h5",
-                                       "results.xdmf",     "snapshots",     "packings",
-                                       "prepared.restart", "cost_record.h5"};
+constexpr const char* kRunOutputs[] = {"summary.json",    "history.csv", "results.h5",
+                                       "results.xdmf",    "snapshots",   "packings",
+                                       "prepared.restart"};
 
 std::string host_name() {
   char name[256] = {};

@@ -40,7 +40,7 @@ class RunFolderLock {
 std::string earlier_results(const std::string& dir);
 
 //! Removes from `dir` what a run writes there (results, fields, history, summary, snapshots,
-//! checkpoints, prepared packings, cost record) and nothing else.
+//! checkpoints, prepared packings with the cost record beside them) and nothing else.
 void remove_run_outputs(const std::string& dir);
 
 }  // namespace mpm_lig::io
