@@ -133,19 +133,19 @@ materials::MaterialCost total_cost(const MaterialSet& materials) {
     if (c.stepping.enabled) {
       // Materials update one after the other within a step: their works and makespans add.
       materials::SteppingCost& t = total.stepping;
-      const materials::SteppingCost& m = c.stepping;
+      const materials::SteppingCost& one = c.stepping;
       t.enabled = true;
-      t.groups = std::max(t.groups, m.groups);
-      t.work_predicted += m.work_predicted;
-      t.makespan_predicted += m.makespan_predicted;
-      t.work += m.work;
-      t.makespan += m.makespan;
-      t.bound += m.bound;
-      t.seconds += m.seconds;
-      t.makespan_seconds += m.makespan_seconds;
-      t.migrations += m.migrations;
-      t.rebalances += m.rebalances;
-      t.migration_seconds += m.migration_seconds;
+      t.groups = std::max(t.groups, one.groups);
+      t.work_predicted += one.work_predicted;
+      t.makespan_predicted += one.makespan_predicted;
+      t.work += one.work;
+      t.makespan += one.makespan;
+      t.bound += one.bound;
+      t.seconds += one.seconds;
+      t.makespan_seconds += one.makespan_seconds;
+      t.migrations += one.migrations;
+      t.rebalances += one.rebalances;
+      t.migration_seconds += one.migration_seconds;
     }
   }
   return total;
