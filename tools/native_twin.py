@@ -27,65 +27,21 @@ import json
 import math
 import os
 import shutil
-import subprocess
 
 import numpy as np
 
 from mpm_lig_post import cli, figures
+from mpm_lig_post.liggghts import contact_values, render, run_command
 from mpm_lig_post.errors import InputError
 from mpm_lig_post.quantities import PRESETS, Run, principal_series
 from mpm_lig_post.tables import read_history, read_json
 from mpm_lig_post.tradeoff import error
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-TEMPLATES = os.path.join(HERE, "..", "lmp_inputs", "liggghts")
 TESTS = ("isotropic_compression", "drained_biaxial", "drained_triaxial")
 # Servo gains on the lateral strain rate, in units of (stress error) / (K x chunk time):
 # proportional, and integral (the steady widening a dilating packing needs).
 SERVO_P, SERVO_I = 0.5, 0.1
-
-
-def render(name, values, flags):
-    """An mpm_lig engine template: ${name} filled in, '#@if FLAG' blocks kept when FLAG is set."""
-    out, keep = [], True
-    for line in open(os.path.join(TEMPLATES, name)).read().splitlines():
-        if line.startswith("#@if "):
-            keep = line[5:].strip() in flags
-        elif line.startswith("#@endif"):
-            keep = True
-        elif keep and line and not line.startswith("#"):
-            for key, value in values.items():
-                line = line.replace("${" + key + "}", value)
-            out.append(line)
-    return "\n".join(out) + "\n"
-
-
-def contact_values(rve):
-    """The case's contact law as the engine takes it (src/rve/spec.cpp)."""
-    c = rve["contact"]
-    if "poisson_ratio" in c:
-        nu = c["poisson_ratio"]
-    else:
-        nu = (2.0 - 2.0 * c["stiffness_ratio"]) / (2.0 - c["stiffness_ratio"])
-    if "restitution" in c:
-        e = c["restitution"]
-    else:
-        z = c["damping_ratio"]
-        e = math.exp(-math.pi * z / math.sqrt(1.0 - z * z))
-    mu = c["friction"] if "friction" in c else math.tan(math.radians(c["friction_deg"]))
-    values = {"youngs_modulus": repr(float(c["youngs_modulus"])), "poisson_ratio": repr(nu),
-              "restitution": repr(e), "friction": repr(mu), "rolling_model": "",
-              "cohesion_model": ""}
-    flags = {"two_d"} if rve.get("dimension", 3) == 2 else set()
-    if "rolling_friction" in c:
-        values["rolling_friction"] = repr(float(c["rolling_friction"]))
-        values["rolling_model"] = " rolling_friction epsd2"
-        flags.add("rolling")
-    if "cohesion_energy_density" in c:
-        values["cohesion_energy_density"] = repr(float(c["cohesion_energy_density"]))
-        values["cohesion_model"] = " cohesion sjkr"
-        flags.add("cohesion")
-    return values, flags
 
 
 def check_case(case, path):
@@ -238,13 +194,6 @@ def draw(values, volumetric, path, dpi, title):
     fig.suptitle(title)
     fig.tight_layout()
     figures.save(fig, path, dpi)
-
-
-def run_command(command, cwd, log):
-    with open(log, "w") as f:
-        code = subprocess.run(command, cwd=cwd, stdout=f, stderr=subprocess.STDOUT).returncode
-    if code != 0:
-        raise RuntimeError(f"{' '.join(command)} failed (exit {code}): see {log}")
 
 
 def main():
