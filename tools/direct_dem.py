@@ -36,6 +36,8 @@ import argparse
 import json
 import math
 import os
+import resource
+import shutil
 import sys
 import time
 
@@ -60,7 +62,7 @@ HISTORY = ("step", "time", "settlement", "s_over_B", "footing_force", "q", "q_ov
 
 
 # ----------------------------------------------------------------------------- the case
-def need(node, key, path):
+def required(node, key, path):
     if not isinstance(node, dict) or key not in node:
         raise InputError(f"{path}.{key}: missing" if path else f"{key}: missing")
     return node[key]
@@ -77,11 +79,18 @@ def number(value, path, positive=True):
 def problem(case, source, scale):
     """The footing problem of the case, checked: a dict of everything the run needs."""
     where = lambda key: f"{source}: {key}"
+    def need(node, key, path):  # `required`, with the case file named
+        try:
+            return required(node, key, path)
+        except InputError as e:
+            raise InputError(where(str(e))) from None
+
+    analysis = case.get("analysis")
+    if not isinstance(analysis, dict) or analysis.get("type") != "mpm":
+        raise InputError(where("analysis.type: not an mpm case (a footing is an mpm case)"))
     if case.get("dimension") != 2:
         raise InputError(where(f"dimension: {case.get('dimension')!r}; the direct DEM is 2D "
                                "(discs) only"))
-    if need(case, "analysis", "").get("type") != "mpm":
-        raise InputError(where("analysis.type: not an mpm case (a footing is an mpm case)"))
     bodies = case.get("rigid_bodies")
     if not isinstance(bodies, list) or not bodies or not isinstance(bodies[0], dict) \
             or bodies[0].get("type") != "footing":
@@ -221,6 +230,14 @@ def place(radii, lx, ly, rng):
 
 
 # ----------------------------------------------------------------------------- engine run
+STATE = ("steps", "particle_steps", "grains", "load_steps", "next_field", "next_snap", "lx", "ly",
+         "solid", "top_fixes", "prepared", "settled", "prep_state")
+
+
+class Stopped(Exception):
+    """--stop-after-minutes: the run checkpointed and stops (continue with --resume)."""
+
+
 class Run:
     def __init__(self, pb, args, out):
         self.pb, self.args, self.out = pb, args, out
@@ -233,6 +250,8 @@ class Run:
         self.grains = 0
         self.last_progress = 0.0
         self.load_steps = 0
+        self.last_checkpoint = time.time()
+        self.prepared = self.settled = self.prep_state = None
         self.top_fixes = []       # multiplicities m of the surcharge groups topM / fixes surM
 
     # engine plumbing
@@ -315,27 +334,47 @@ class Run:
                   "compute ov all reduce ave c_pl[7]\n"
                   "thermo_style custom step atoms c_stress[1] c_stress[2] c_ke c_ov\n"
                   "thermo_modify norm no lost ignore\nthermo 0\nrun 0")
+        self.prep_state = {"phase": "first", "friction": friction, "compacted": None}
+        self.consolidate()
+
+    def consolidate(self):
+        """src/rve/consolidation.cpp consolidate(), resumable at each of its servo phases
+        (self.prep_state: phase first / stage / final, the friction in use)."""
+        pb, rve, prep = self.pb, self.pb["rve"], self.pb["prep"]
+        mu = rve["contact"]["friction"] if "friction" in rve["contact"] \
+            else math.tan(math.radians(rve["contact"]["friction_deg"]))
         self.budget = int(prep.get("max_steps", 5_000_000)) * max(1, int(round(self.grains / 400)))
         tol = float(prep.get("tolerance", 0.005))
         etol = float(prep.get("void_ratio_tolerance", 0.005))
         target = pb["e0"]
-        o = self.servo(tol)
         stop = target + 0.25 * etol
-        while self.void_ratio(o) > stop and friction > 0.0:
+        st = self.prep_state
+        friction = st["friction"]
+        if st["phase"] == "first":
+            o = self.servo(tol)
+            st["phase"] = "stage"
+        else:
+            # resumed: finish the servo phase that was interrupted
+            o = self.servo(tol, stop if st["phase"] == "stage" and friction <= mu else 0.0)
+        while st["phase"] == "stage" and self.void_ratio(o) > stop and friction > 0.0:
             previous = friction
             friction = FRICTION_STEP * friction if friction > 1e-3 else 0.0
             if previous > mu > friction:
                 friction = mu
+            st["friction"] = friction
             self.materials(friction)
             self.send("run 0")
             o = self.servo(tol, stop if friction <= mu else 0.0)
-        compacted = self.void_ratio(o)
-        if friction != mu:
-            self.materials(mu)
-            self.send("run 0")
-            o = self.servo(tol)
+        if st["phase"] == "stage":
+            st["compacted"] = self.void_ratio(o)
+            st["phase"] = "final"
+            if friction != mu:
+                st["friction"] = mu
+                self.materials(mu)
+                self.send("run 0")
+                o = self.servo(tol)
         e = self.void_ratio(o)
-        self.prepared = {"void_ratio": e, "compacted_void_ratio": compacted,
+        self.prepared = {"void_ratio": e, "compacted_void_ratio": st["compacted"],
                          "friction_used": friction, "sxx": o["sxx"], "syy": o["syy"],
                          "steps": self.steps, "cell": [o["lx"], o["ly"]]}
         if abs(e - target) > etol:
@@ -380,6 +419,7 @@ class Run:
             settled = settled + 1 if on and kr < AT_REST else 0
             if settled >= 3:
                 return o
+            self.maybe_checkpoint("prepare")
         raise RuntimeError(f"the isotropic servo to {p_t} Pa did not settle within "
                            f"{self.budget} steps (preparation.max_steps per 400 grains)")
 
@@ -400,6 +440,7 @@ class Run:
                   "group footing id " + " ".join(map(str, foot)) + "\n"
                   "group frozen union base footing\ngroup soil subtract all frozen\n"
                   "velocity frozen set 0 0 0")
+        self.base_ids, self.footing_ids = base, foot
         soil = np.isin(ids, np.concatenate([base, foot]), invert=True)
         cut = soil & ((xy[:, 0] - r < 0) | (xy[:, 0] + r > lx))
         self.cut = {int(i): float(rr) for i, rr in zip(ids[cut], r[cut])}
@@ -511,6 +552,7 @@ class Run:
         total = int(math.ceil(end / ds))
         self.send(f"fix push footing move linear 0.0 {-v!r} 0.0")
         hist = os.path.join(self.out, "history.csv")
+        self.surcharge_update()
         if not state:
             with open(hist, "w") as f:
                 f.write(",".join(HISTORY) + "\n")
@@ -520,7 +562,6 @@ class Run:
             self.next_snap = 0
         outs = [k * a.fields_every for k in range(int(a.settlement / a.fields_every + 1e-9) + 1)]
         snaps = sorted(a.snapshots)
-        last_check = time.time()
         while self.load_steps < total:
             n = min(a.surcharge_every, total - self.load_steps)
             self.surcharge_update()
@@ -539,12 +580,7 @@ class Run:
             left = (total - self.load_steps) / max(self.load_steps, 1) * (time.time() - self.start)
             self.progress(f"s/B = {sB:.3f}, q/q_s = {row['q_over_qs']:.2f}, "
                           f"{self.load_steps}/{total} steps, ETA {left / 60:.1f} min")
-            if time.time() - last_check > 60 * a.checkpoint_minutes:
-                self.checkpoint()
-                last_check = time.time()
-            if a.stop_after_minutes and time.time() - self.start > 60 * a.stop_after_minutes:
-                self.checkpoint()
-                return False
+            self.maybe_checkpoint("load")
         return True
 
     def write_row(self, path, row):
@@ -578,6 +614,8 @@ class Run:
         where = {int(i): k for k, i in enumerate(ids)}
         first = xy[[where[int(i)] for i in loc[:, 0]]]
         second = xy[[where[int(i)] for i in loc[:, 1]]]
+        np.savez(prefix + "_contacts.npz", id1=loc[:, 0].astype(int), id2=loc[:, 1].astype(int),
+                 fx=loc[:, 2], fy=loc[:, 3], footing_force=self.history_row(0.0)["footing_force"])
         loc = np.column_stack([first, second, loc[:, 2:4]])
         with open(prefix + "_grains.vtk", "w") as f:
             f.write("# vtk DataFile Version 3.0\ngrains\nASCII\nDATASET POLYDATA\n"
@@ -607,37 +645,48 @@ class Run:
                   "particle-steps/s)", flush=True)
             self.last_progress = now
 
-    def checkpoint(self):
-        path = os.path.join(self.out, "checkpoint.restart")
+    def maybe_checkpoint(self, stage):
+        """A checkpoint every --checkpoint-minutes; with --stop-after-minutes, one and a stop."""
+        a = self.args
+        if time.time() - self.last_checkpoint > 60 * a.checkpoint_minutes:
+            self.checkpoint(stage)
+        if a.stop_after_minutes and time.time() - self.start > 60 * a.stop_after_minutes:
+            self.checkpoint(stage)
+            raise Stopped()
+
+    def checkpoint(self, stage, name="checkpoint"):
+        path = os.path.join(self.out, name + ".restart")
         self.send(f'write_restart "{path}.tmp"')
         if not os.path.isfile(path + ".tmp") or os.path.getsize(path + ".tmp") < 1000:
             raise RuntimeError(f"{path}.tmp: write_restart left no usable file (disk full?)")
         os.replace(path + ".tmp", path)
-        state = {k: getattr(self, k) for k in ("steps", "particle_steps", "grains", "load_steps",
-                                               "next_field", "next_snap", "lx", "ly", "solid",
-                                               "top_fixes")}
-        state.update(prepared=self.prepared, settled=self.settled,
-                     wall_seconds=self.wall_before + time.time() - self.start,
+        state = {k: getattr(self, k, None) for k in STATE}
+        state.update(stage=stage, scale=self.args.scale, seed=self.args.seed, wall_seconds=self.wall_before + time.time() - self.start,
                      cpu_seconds=self.cpu_before + self.cpu_seconds())
-        with open(os.path.join(self.out, "state.json.tmp"), "w") as f:
+        with open(os.path.join(self.out, name + ".json.tmp"), "w") as f:
             json.dump(state, f, indent=1)
-        os.replace(os.path.join(self.out, "state.json.tmp"), os.path.join(self.out, "state.json"))
-        self.progress("checkpoint written", force=True)
+        os.replace(os.path.join(self.out, name + ".json.tmp"), os.path.join(self.out, name + ".json"))
+        self.last_checkpoint = time.time()
+        self.progress(f"{name} written ({stage})", force=True)
 
-    def resume(self, state):
-        for k in ("steps", "particle_steps", "grains", "load_steps", "next_field", "next_snap",
-                  "lx", "ly", "solid", "prepared", "settled"):
+    def resume(self, state, restart):
+        for k in STATE:
             setattr(self, k, state[k])
         self.wall_before, self.cpu_before = state["wall_seconds"], state["cpu_seconds"]
-        path = os.path.join(self.out, "checkpoint.restart")
-        self.send(render("restart.in", {"restart_file": f'"{path}"',
+        self.send(render("restart.in", {"restart_file": f'"{restart}"',
                                         "skin": repr(0.4 * 0.5 * self.pb["d"])}, {"two_d"}))
-        self.materials()
+        friction = self.prep_state["friction"] if state["stage"] == "prepare" else None
+        self.materials(friction)
         self.send(render("dynamics.in", {"time_step": repr(self.pb["dt"])}, {"two_d"}))
         self.send("compute ke all ke\ncompute pl all pair/gran/local id force delta\n"
-                  "compute ov all reduce ave c_pl[7]")
-        self.dynamics()
-        self.send("\n".join(f"group top{m} delete" for m in state["top_fixes"]) + "\nrun 0")
+                  "compute ov all reduce ave c_pl[7]\n"
+                  "thermo_style custom step atoms c_stress[1] c_stress[2] c_ke c_ov\n"
+                  "thermo_modify norm no lost ignore\nthermo 0")
+        if state["stage"] != "prepare":
+            self.dynamics()
+            self.send("\n".join(f"group top{m} delete" for m in state["top_fixes"]))
+            self.top_fixes = []
+        self.send("run 0")
 
 
 def summarise(run, pb, args, out, finished):
@@ -646,6 +695,8 @@ def summarise(run, pb, args, out, finished):
     window = lambda a, b: float(np.mean(q[(sB >= a) & (sB <= b)])) if np.any((sB >= a) & (sB <= b)) \
         else None
     wall = run.wall_before + time.time() - run.start
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    python_cpu = own.ru_utime + own.ru_stime
     cpu = run.cpu_before + run.cpu_seconds()
     summary = {
         "case": os.path.abspath(args.case), "finished": finished, "scale": args.scale,
@@ -656,7 +707,8 @@ def summarise(run, pb, args, out, finished):
         "preparation": run.prepared, "settled": run.settled,
         "dem_steps": run.steps, "loading_steps": run.load_steps,
         "particle_steps": run.particle_steps, "ranks": args.np,
-        "wall_seconds": wall, "engine_cpu_seconds": cpu, "core_seconds": max(cpu, 0) or wall * args.np,
+        "wall_seconds": wall, "engine_cpu_seconds": cpu,
+        "python_cpu_seconds": python_cpu, "core_seconds": cpu * args.np + python_cpu,
         "s_over_B_reached": float(sB[-1]), "peak_q_over_qs": float(np.max(q)),
         "peak_at_s_over_B": float(sB[int(np.argmax(q))]),
         "plateau_0.1_0.4": window(0.1, 0.4), "mean_0.4_1.0": window(0.4, 1.0)}
@@ -709,6 +761,8 @@ def main():
     p.add_argument("--stop-after-minutes", type=float, default=0.0,
                    help="checkpoint and stop after this long (continue with --resume)")
     p.add_argument("--resume", action="store_true", help="continue DIR from its checkpoint")
+    p.add_argument("--start-from", metavar="RUN_DIR",
+                   help="load the settled block of an earlier run (e.g. at another speed)")
     a = p.parse_args()
     for name in ("scale", "settlement", "speed_factor", "fields_every"):
         v = getattr(a, name)
@@ -719,37 +773,62 @@ def main():
     case = read_json(a.case)
     pb = problem(case, a.case, a.scale)
     check_memory(pb, a.scale)
-    state = None
+    state = restart = None
     if a.resume:
-        state = read_json(os.path.join(a.output, "state.json"))
-    elif os.path.exists(os.path.join(a.output, "history.csv")):
+        state = read_json(os.path.join(a.output, "checkpoint.json"))
+        restart = os.path.join(a.output, "checkpoint.restart")
+    elif os.path.exists(os.path.join(a.output, "history.csv")) or \
+            os.path.exists(os.path.join(a.output, "checkpoint.json")):
         raise InputError(f"{a.output}: holds a run already (continue it with --resume)")
+    if a.start_from:
+        # a settled block of an earlier run (another speed): its packing, a fresh loading
+        state = read_json(os.path.join(a.start_from, "settled.json"))
+        restart = os.path.join(a.start_from, "settled.restart")
+        for k, v in (("scale", a.scale), ("seed", a.seed)):
+            if state.get(k) not in (None, v):
+                raise InputError(f"--start-from {a.start_from}: its --{k} is {state.get(k)}, "
+                                 f"not {v}")
     os.makedirs(a.output, exist_ok=True)
     run = Run(pb, a, a.output)
     run.open()
+    finished = False
     try:
         if state:
-            run.resume(state)
-            run.ref_ids = np.load(os.path.join(a.output, "reference.npz"))["ids"]
-            run.ref_xy = np.load(os.path.join(a.output, "reference.npz"))["xy"]
-            run.field_out = FieldOutput(a.output, resume=True)
+            run.resume(state, restart)
         else:
             print(f"direct DEM of {a.case}: about {pb['grains']} grains, B/d = "
                   f"{pb['B'] / pb['d']:.1f}, footing {pb['speed'] * a.speed_factor:.4g} m/s, "
                   f"dt {pb['dt']:.4g} s", flush=True)
             run.prepare()
+        stage = state["stage"] if state else "prepare"
+        if stage == "prepare":
+            if state:
+                run.consolidate()
             run.open_block()
             run.settle()
             ids, xy, _ = run.grains_now()
             order = np.argsort(ids)
-            run.ref_ids, run.ref_xy = ids[order], xy[order]
-            np.savez(os.path.join(a.output, "reference.npz"), ids=run.ref_ids, xy=run.ref_xy)
-            run.field_out = FieldOutput(a.output)
-        finished = run.load(state)
-        run.checkpoint()
-        summary = summarise(run, pb, a, a.output, finished)
+            np.savez(os.path.join(a.output, "reference.npz"), ids=ids[order], xy=xy[order],
+                     base=run.base_ids, footing=run.footing_ids)
+            run.checkpoint("settled", "settled")
+        elif stage == "settled" and a.start_from:
+            shutil.copy(os.path.join(a.start_from, "reference.npz"), a.output)
+        reference = np.load(os.path.join(a.output, "reference.npz"))
+        run.ref_ids, run.ref_xy = reference["ids"], reference["xy"]
+        loading = stage == "load"
+        if not loading:
+            run.load_steps = 0
+        run.field_out = FieldOutput(a.output, resume=loading)
+        finished = run.load(loading)
+        run.checkpoint("load")
+    except Stopped:
+        pass
     finally:
         run.session.close()
+    if not os.path.isfile(os.path.join(a.output, "history.csv")):
+        print(f"stopped during the preparation: continue with --resume {a.output}")
+        sys.exit(3)
+    summary = summarise(run, pb, a, a.output, finished)
     chains_picture(a.output)
     print(f"{'finished' if finished else 'stopped (continue with --resume)'}: peak q/q_s "
           f"{summary['peak_q_over_qs']:.2f} at s/B {summary['peak_at_s_over_B']:.2f}, "
