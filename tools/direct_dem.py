@@ -295,7 +295,11 @@ class Run:
         pb, rve = self.pb, self.pb["rve"]
         prep = pb["prep"]
         rng = np.random.default_rng(self.args.seed)
-        radii = draw_radii(rve["radius"], pb["grains"], rng)
+        # as many grains as the drawn sample needs to fill the block at the target void ratio
+        pool = draw_radii(rve["radius"], int(1.2 * pb["grains"]) + 50, rng)
+        area = float(np.prod(pb["box"])) / (1.0 + pb["e0"])
+        count = int(np.searchsorted(np.cumsum(math.pi * pool ** 2), area)) + 1
+        radii = pool[:count]
         solid = float(np.sum(math.pi * radii ** 2))
         phi0 = float(prep.get("initial_solid_fraction", 0.6 * 0.8))
         aspect = pb["box"][0] / pb["box"][1]
@@ -444,7 +448,19 @@ class Run:
         soil = np.isin(ids, np.concatenate([base, foot]), invert=True)
         cut = soil & ((xy[:, 0] - r < 0) | (xy[:, 0] + r > lx))
         self.cut = {int(i): float(rr) for i, rr in zip(ids[cut], r[cut])}
-        gap = {int(i): 0.98 * min(x, lx - x) for i, x in zip(ids[cut], xy[cut, 0])}
+        # A cut grain shrinks to fit between its centre and the plane, but to no less than half
+        # its radius: then its centre moves in to that half radius (no new overlap: the move
+        # is at most what the radius lost).
+        gap, moves = {}, []
+        for i, x, rr in zip(ids[cut], xy[cut, 0], r[cut]):
+            room = min(x, lx - x)
+            gap[int(i)] = max(0.98 * room, 0.49 * rr)
+            if 0.98 * room < 0.49 * rr:
+                target = 0.5 * rr if x < 0.5 * lx else lx - 0.5 * rr
+                moves.append(f"set atom {int(i)} x {target!r}")
+        rho = float(pb["rve"]["density"])
+        self.send("\n".join([f"set atom {i} diameter {2 * g!r} density {rho!r}"
+                             for i, g in gap.items()] + moves))
         self.dynamics()
         self.regrow(gap, 0.0)
         self.progress(f"opened the block: {len(base)} base, {len(foot)} footing, "
@@ -465,16 +481,18 @@ class Run:
                   "c_f_base c_ke_soil c_f_soil_x\nthermo_modify norm no lost ignore\nthermo 0")
 
     def regrow(self, gap, settle_steps):
-        """Cut grains from their fitted radius back to their own in 10 increments."""
+        """Cut grains from their fitted radius back to their own in 50 increments of 100 steps
+        (an overlap growth of 1 % of the radius per increment), the surcharge re-found every 5."""
         rho = float(self.pb["rve"]["density"])
-        for k in range(11):
-            f = k / 10.0
+        for k in range(51):
+            f = k / 50.0
             cmds = [f"set atom {i} diameter {2 * ((1 - f) * gap[i] + f * r)!r} density {rho!r}"
                     for i, r in self.cut.items()]
             if cmds:
                 self.send("\n".join(cmds))
-            self.surcharge_update()
-            self.run(200)
+            if k % 5 == 0:
+                self.surcharge_update()
+            self.run(100)
 
     def grains_now(self, group="all"):
         """(ids, centres n x 2, radii) from a dump of the engine now."""
@@ -553,6 +571,7 @@ class Run:
         self.send(f"fix push footing move linear 0.0 {-v!r} 0.0")
         hist = os.path.join(self.out, "history.csv")
         self.surcharge_update()
+        self.send("run 0")  # the force sums current before the first history row
         if not state:
             with open(hist, "w") as f:
                 f.write(",".join(HISTORY) + "\n")
@@ -606,6 +625,7 @@ class Run:
         folder = os.path.join(self.out, "snapshots")
         os.makedirs(folder, exist_ok=True)
         prefix = os.path.join(folder, f"grains_{self.load_steps:09d}")
+        self.send("run 0")  # forces and the contact list of one state
         ids, xy, r = self.grains_now()
         path = prefix + ".tmp"
         self.send(f'write_dump all local "{path}" c_pl[1] c_pl[2] c_pl[4] c_pl[5]')
@@ -697,7 +717,7 @@ def summarise(run, pb, args, out, finished):
     wall = run.wall_before + time.time() - run.start
     own = resource.getrusage(resource.RUSAGE_SELF)
     python_cpu = own.ru_utime + own.ru_stime
-    cpu = run.cpu_before + run.cpu_seconds()
+    cpu = run.cpu_before + run.final_cpu
     summary = {
         "case": os.path.abspath(args.case), "finished": finished, "scale": args.scale,
         "seed": args.seed, "grains": run.grains, "B": pb["B"], "B_over_d": pb["B"] / pb["d"],
@@ -824,6 +844,7 @@ def main():
     except Stopped:
         pass
     finally:
+        run.final_cpu = run.cpu_seconds()
         run.session.close()
     if not os.path.isfile(os.path.join(a.output, "history.csv")):
         print(f"stopped during the preparation: continue with --resume {a.output}")

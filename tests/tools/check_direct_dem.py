@@ -110,7 +110,7 @@ def affine():
 def real(work):
     shutil.rmtree(work, ignore_errors=True)
     out = os.path.join(work, "tiny")
-    code, stdout, stderr = run_tool([TINY, "--output", out, "--settlement", "0.05",
+    code, stdout, stderr = run_tool([TINY, "--output", out, "--settlement", "0.05", "--seed", "12",
                                      "--snapshots", "0.05", "--fields-every", "0.025"])
     check(code == 0, f"the tiny run ends with exit 0 (got {code}; {stderr.strip()[-300:]})")
     if code != 0:
@@ -138,8 +138,8 @@ def real(work):
     check(ks < 1.63 / math.sqrt(len(u)), f"radii uniform on [min, max] (KS distance {ks:.3f})")
     block = np.prod(case["bodies"][0]["box"]["max"])
     e_count = block / np.sum(math.pi * r ** 2) - 1
-    check(abs(e_count - target) <= 0.03,
-          f"the grain count fills the case's block at e = {e_count:.4f} (target {target} +- 0.03)")
+    check(abs(e_count - target) <= 0.02,
+          f"the grain count fills the case's block at e = {e_count:.4f} (target {target} +- 0.02)")
     # the surcharge on the free surface: what the base carries beyond the footing's load
     table = np.genfromtxt(os.path.join(out, "history.csv"), delimiter=",", names=True)
     first = table[0]
@@ -160,7 +160,7 @@ def real(work):
     # pair/gran/local gives the force on the first grain of a pair
     total = contacts["fy"][i_in & ~j_in].sum() - contacts["fy"][j_in & ~i_in].sum()
     F = float(contacts["footing_force"])
-    check(abs(total - F) <= 1e-6 * abs(F) and F > 0,
+    check(abs(total - F) <= 1e-3 * abs(F) and F > 0,
           f"footing load {F:.6g} N = sum of its contact forces {total:.6g} N")
     check(np.all(np.diff(table["s_over_B"]) > 0) and table["s_over_B"][-1] >= 0.05 - 1e-9,
           f"settlement rises to s/B = {table['s_over_B'][-1]:.4f}")
