@@ -55,6 +55,8 @@ CHUNK = 100            # servo steps per update (src/rve/consolidation.cpp kChun
 AT_REST = 2e-3         # kinetic / elastic energy of a relaxed packing (kAtRest)
 FRICTION_STEP = 0.7    # friction factor per compaction stage (kFrictionStep)
 NEAR_TARGET = 0.05     # a compaction stage stops at its void ratio this close to p (kNearTarget)
+STILL_CHUNKS = 20      # ... or on target with the void ratio within STILL_VOID_RATIO this long
+STILL_VOID_RATIO = 2e-5
 BYTES_PER_GRAIN = 4 * 1.1e6 / 400  # the engine's measured 2.75 kB per grain (src/rve/spec.cpp), x4
 MAX_GRAINS = 2_000_000
 HISTORY = ("step", "time", "settlement", "s_over_B", "footing_force", "q", "q_over_qs",
@@ -399,6 +401,7 @@ class Run:
         max_step = float(pb["prep"].get("max_strain_rate", rate)) * CHUNK * pb["dt"]
         o = self.observe()
         settled = 0
+        history = []
         while self.steps < self.budget:
             p = -0.5 * (o["sxx"] + o["syy"])
             strains = []
@@ -415,12 +418,20 @@ class Run:
             o = self.observe()
             p_new = -0.5 * (o["sxx"] + o["syy"])
             e = self.void_ratio(o)
-            self.progress(f"preparing: e = {e:.4f}, p = {p_new / 1e3:.1f} kPa")
+            self.progress(f"preparing: e = {e:.4f}, p = {p_new / 1e3:.1f} kPa, kinetic/elastic "
+                          f"{self.kinetic_ratio(o, o['lx'] * o['ly'], p_new):.2g}")
             if stop_void_ratio > 0 and e <= stop_void_ratio and abs(p_new - p_t) <= NEAR_TARGET * p_t:
                 return o
             on = abs(p_new - p_t) <= tol * p_t
             kr = self.kinetic_ratio(o, o["lx"] * o["ly"], p_new)
-            settled = settled + 1 if on and kr < AT_REST else 0
+            # At rest as an RVE (kinetic energy below AT_REST of the elastic), or, as a block of
+            # thousands of discs keeps a kinetic floor (rattlers: 0.5 % of its estimated
+            # elastic energy for 3666 discs), on target with its void ratio still for
+            # STILL_CHUNKS servo chunks.
+            history.append(e)
+            still = len(history) > STILL_CHUNKS and max(history[-STILL_CHUNKS:]) - \
+                min(history[-STILL_CHUNKS:]) < STILL_VOID_RATIO
+            settled = settled + 1 if on and (kr < AT_REST or still) else 0
             if settled >= 3:
                 return o
             self.maybe_checkpoint("prepare")
