@@ -11,7 +11,7 @@ numbers are read from their one home, the load table of --multiscale-table (the 
 cell starts with a --rows text; columns: first peak, plateau over s/B 0.1-0.4, mean over
 0.4-1.0), never copied. Prints one row per run: grains, B/d, particle-steps, core-hours, peak
 q/q_s (at s/B), plateau 0.1-0.4, mean 0.4-1.0 (a window the run did not reach: '-') and the
-difference of each against every multiscale row; writes PREFIX_load.png (q/q_s against s/B of
+difference of each (first peak: the running maximum before the load first drops 10 % below it) against every multiscale row; writes PREFIX_load.png (q/q_s against s/B of
 every run, the multiscale peak and window means as marks) and PREFIX_fields.png (eps_q of each
 run at s/B = --at beside the --pictures of the multiscale fields), and PREFIX.json.
 Exit 2 on bad input (a folder without a summary, a row not in the table).
@@ -55,6 +55,20 @@ def multiscale_rows(path, prefixes):
     return rows
 
 
+def first_peak(sB, q, drop=0.10):
+    """(q, s/B) of the first peak: the running maximum (from s/B 0.02) just before the load
+    first falls `drop` below it; the highest value when it never does."""
+    best, at = -np.inf, 0.0
+    for s, v in zip(sB, q):
+        if s < 0.02:
+            continue
+        if v > best:
+            best, at = v, s
+        elif v < (1.0 - drop) * best:
+            break
+    return float(best), float(at)
+
+
 def run_row(directory):
     summary = read_json(os.path.join(directory, "summary.json"))
     table = read_history(os.path.join(directory, "history.csv"))
@@ -65,7 +79,9 @@ def run_row(directory):
            "loading_particle_steps": summary["loading_steps"] * summary["grains"],
            "core_hours": summary["core_seconds"] / 3600.0,
            "wall_hours": summary["wall_seconds"] / 3600.0,
-           "reached": float(sB[-1]), "peak": float(q.max()), "peak_at": float(sB[int(np.argmax(q))])}
+           "reached": float(sB[-1]), "highest": float(q.max()),
+           "highest_at": float(sB[int(np.argmax(q))])}
+    row["peak"], row["peak_at"] = first_peak(sB, q)
     for name, a, b in WINDOWS:
         inside = (sB >= a) & (sB <= b)
         row[name] = float(q[inside].mean()) if inside.any() and sB[-1] >= b - 1e-6 else None
@@ -105,12 +121,13 @@ def main():
         rows.append(row)
         curves.append((d, sB, q, row))
     head = (f"{'run':34s} {'grains':>7s} {'B/d':>5s} {'particle-steps':>14s} {'core-h':>7s} "
-            f"{'peak (s/B)':>12s} {'0.1-0.4':>8s} {'0.4-1.0':>8s}")
+            f"{'first peak':>12s} {'highest':>12s} {'0.1-0.4':>8s} {'0.4-1.0':>8s}")
     print(head)
     for r in rows:
         print(f"{os.path.basename(os.path.normpath(r['run'])):34s} {r['grains']:7d} "
               f"{r['B_over_d']:5.0f} {r['particle_steps']:14.3g} {r['core_hours']:7.3f} "
-              f"{r['peak']:6.2f} ({r['peak_at']:.2f}) {fmt(r['plateau']):>8s} {fmt(r['mean']):>8s}")
+              f"{r['peak']:6.2f} ({r['peak_at']:.2f}) {r['highest']:6.2f} ({r['highest_at']:.2f}) "
+              f"{fmt(r['plateau']):>8s} {fmt(r['mean']):>8s}")
         for name in multi:
             diffs = [f"{key} {100 * r[f'{key} vs {name}']:+.0f} %" for key in
                      ("peak", "plateau", "mean") if f"{key} vs {name}" in r]
