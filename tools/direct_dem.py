@@ -3,7 +3,9 @@
 problem run by the native `liggghts` executable, grain by grain.
 
 usage: direct_dem.py CASE.json --output DIR [--scale S] [--seed N] [--settlement S_OVER_B]
-                     [--speed-factor F] [--np N] [--resume] [--snapshots S1 S2 ...]
+                     [--speed-factor F] [--np N] [--snapshots S1 S2 ...] [--fields-every DS]
+                     [--surcharge-every STEPS] [--checkpoint-minutes M] [--stop-after-minutes M]
+                     [--resume | --start-from RUN_DIR]
 
 CASE.json is a 2D footing case (analysis.type mpm, rigid_bodies[0] a footing at x = 0 on a
 half model, one dem_rve material, rollers on x- and x+, fixed y-, a vertical traction: the
@@ -28,9 +30,10 @@ results.xdmf (the grains' motion coarse-grained onto the case's material points:
 Hencky strain and eps_q, for tools/plot_fields.py and ParaView), snapshots/ (grains and
 contacts as legacy VTK at --snapshots settlements, for tools/plot_force_chains.py),
 force_chains.png, load.png, summary.json (grains, particle-steps, core-seconds, wall time,
-peak and plateau) and checkpoint.restart + state.json every --checkpoint-minutes; --resume
-continues an interrupted run from them. Bad input: exit 2 naming the JSON key or option before
-anything runs; a failed engine run: exit 1.
+peak and plateau), checkpoint.restart + checkpoint.json every --checkpoint-minutes (in the
+preparation too; --resume continues from them) and settled.restart + settled.json (the block at
+rest under q_s; --start-from loads it for another loading, e.g. at half the speed). Bad input: exit 2 naming the JSON key or option before
+anything runs or is created; a failed engine run: exit 1; stopped with a checkpoint: exit 3.
 """
 import argparse
 import json
@@ -812,6 +815,8 @@ def main():
         v = getattr(a, name)
         if not math.isfinite(v) or v <= 0:
             raise InputError(f"--{name.replace('_', '-')}: must be > 0, got {v}")
+    if a.resume and a.start_from:
+        raise InputError("--resume and --start-from exclude each other")
     if a.np < 1 or a.surcharge_every < 1:
         raise InputError("--np and --surcharge-every must be >= 1")
     case = read_json(a.case)
