@@ -32,70 +32,22 @@ import json  # noqa: E402
 import math  # noqa: E402
 import os  # noqa: E402
 import shutil  # noqa: E402
-import subprocess  # noqa: E402
 import sys  # noqa: E402
 
 import numpy as np  # noqa: E402
 
 from mpm_lig_post import cli, figures  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.liggghts import RunFailed, contact_values, render, run_command  # noqa: E402
 from mpm_lig_post.quantities import PRESETS, Run, principal_series  # noqa: E402
 from mpm_lig_post.tables import need, read_history, read_json, read_text  # noqa: E402
 from mpm_lig_post.tradeoff import error  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-TEMPLATES = os.path.join(HERE, "..", "lmp_inputs", "liggghts")
 TESTS = ("isotropic_compression", "drained_biaxial", "drained_triaxial")
 # Servo gains on the lateral strain rate, in units of (stress error) / (K x chunk time):
 # proportional, and integral (the steady widening a dilating packing needs).
 SERVO_P, SERVO_I = 0.5, 0.1
-
-
-class RunFailed(Exception):
-    """mpm_lig or liggghts failed: exit code 1."""
-
-
-def render(name, values, flags):
-    """An mpm_lig engine template: ${name} filled in, '#@if FLAG' blocks kept when FLAG is set."""
-    out, keep = [], True
-    for line in open(os.path.join(TEMPLATES, name)).read().splitlines():
-        if line.startswith("#@if "):
-            keep = line[5:].strip() in flags
-        elif line.startswith("#@endif"):
-            keep = True
-        elif keep and line and not line.startswith("#"):
-            for key, value in values.items():
-                line = line.replace("${" + key + "}", value)
-            out.append(line)
-    return "\n".join(out) + "\n"
-
-
-def contact_values(rve):
-    """The case's contact law as the engine takes it (src/rve/spec.cpp)."""
-    c = rve["contact"]
-    if "poisson_ratio" in c:
-        nu = c["poisson_ratio"]
-    else:
-        nu = (2.0 - 2.0 * c["stiffness_ratio"]) / (2.0 - c["stiffness_ratio"])
-    if "restitution" in c:
-        e = c["restitution"]
-    else:
-        z = c["damping_ratio"]
-        e = math.exp(-math.pi * z / math.sqrt(1.0 - z * z))
-    mu = c["friction"] if "friction" in c else math.tan(math.radians(c["friction_deg"]))
-    values = {"youngs_modulus": repr(float(c["youngs_modulus"])), "poisson_ratio": repr(nu),
-              "restitution": repr(e), "friction": repr(mu), "rolling_model": "",
-              "cohesion_model": ""}
-    flags = {"two_d"} if rve.get("dimension", 3) == 2 else set()
-    if "rolling_friction" in c:
-        values["rolling_friction"] = repr(float(c["rolling_friction"]))
-        values["rolling_model"] = " rolling_friction epsd2"
-        flags.add("rolling")
-    if "cohesion_energy_density" in c:
-        values["cohesion_energy_density"] = repr(float(c["cohesion_energy_density"]))
-        values["cohesion_model"] = " cohesion sjkr"
-        flags.add("cohesion")
-    return values, flags
 
 
 def check_case(case, path):
@@ -248,30 +200,6 @@ def draw(values, volumetric, path, dpi, title):
     fig.suptitle(title)
     fig.tight_layout()
     figures.save(fig, path, dpi)
-
-
-def error_line(log):
-    """The first line of an engine's or mpm_lig's log that says what went wrong, or ''."""
-    try:
-        lines = read_text(log).splitlines()
-    except InputError:
-        return ""
-    return next((ln.strip() for ln in lines if ln.lstrip().startswith("ERROR")
-                 or ": error:" in ln), "")
-
-
-def run_command(command, cwd, log, restart=None):
-    """Run `command` in `cwd` with its output in `log`. A failure is RunFailed with the log's
-    error line; liggghts failing to read `restart` is the restart's fault (InputError)."""
-    with open(log, "w") as f:
-        code = subprocess.run(command, cwd=cwd, stdout=f, stderr=subprocess.STDOUT).returncode
-    if code != 0:
-        line = error_line(log)
-        if restart and "restart" in line.lower():
-            raise InputError(f"{restart}: {os.path.basename(command[0])} cannot read it "
-                             f"({line}): a damaged or truncated restart file (log: {log})")
-        raise RunFailed(f"{' '.join(command)} failed (exit {code})"
-                        + (f": {line}" if line else "") + f"; see {log}")
 
 
 def main():
