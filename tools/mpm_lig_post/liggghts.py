@@ -8,7 +8,6 @@ import shutil
 import subprocess
 
 from mpm_lig_post.errors import InputError
-from mpm_lig_post.tables import read_text
 
 TEMPLATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "lmp_inputs",
                          "liggghts")
@@ -91,10 +90,12 @@ class RunFailed(Exception):
 
 
 def error_line(log):
-    """The first line of an engine's or mpm_lig's log that says what went wrong, or ''."""
+    """The first line of an engine's or mpm_lig's log that says what went wrong, or ''. Read
+    leniently: an engine echoes the bytes of a damaged file into its log."""
     try:
-        lines = read_text(log).splitlines()
-    except InputError:
+        with open(log, "rb") as f:
+            lines = f.read().decode("utf-8", errors="replace").splitlines()
+    except OSError:
         return ""
     return next((ln.strip() for ln in lines if ln.lstrip().startswith("ERROR")
                  or ": error:" in ln), "")
