@@ -13,8 +13,7 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools"))
-from mpm_lig_post.vtk_legacy import read_polydata  # noqa: E402
+from mpm_lig_post.vtk_legacy import read_polydata
 
 
 def cell_area(prefix):

@@ -40,6 +40,6 @@ grep -q "stopped by a signal after step 300" "$work/stopped.log" && [ $status -e
 "$@" "$exe" "$work/plain.json" --resume "$work/resumed" > "$work/resumed.log" 2>&1 ||
   { echo "resume on $np rank(s) failed:"; tail -5 "$work/resumed.log"; exit 1; }
 echo "checkpoint every 37 steps vs none:"
-/usr/bin/python3 "$here/compare_runs.py" "$work/plain" "$work/checkpointed"
+/usr/bin/python3 "$here/../../tools/compare_outputs.py" --results-only "$work/plain" "$work/checkpointed"
 echo "stopped at step 300 and resumed on $np rank(s) vs uninterrupted:"
-/usr/bin/python3 "$here/compare_runs.py" "$work/plain" "$work/resumed"
+/usr/bin/python3 "$here/../../tools/compare_outputs.py" --results-only "$work/plain" "$work/resumed"

@@ -24,7 +24,7 @@ fi
 echo "killed run: checkpoint $(cat "$work/resumed/checkpoints/latest"), \
 $(($(wc -l < "$work/resumed/history.csv") - 1)) history rows"
 "$@" "$exe" "$work/case.json" --resume "$work/resumed"
-/usr/bin/python3 "$here/compare_runs.py" "$work/reference" "$work/resumed"
+/usr/bin/python3 "$here/../../tools/compare_outputs.py" --results-only "$work/reference" "$work/resumed"
 # ParaView sees every output step of the resumed run, those before the checkpoint included.
 steps() { grep -o '<Grid Name="step_[0-9]*"' "$1/results.xdmf" | sort; }
 if [ "$(steps "$work/reference")" != "$(steps "$work/resumed")" ]; then

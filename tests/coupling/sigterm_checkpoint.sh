@@ -72,5 +72,5 @@ print("resumed to the end: %d history rows, steps 0..%d" % (end + 1, end))
 PY
 if [ "${IDENTITY:-0}" = 1 ]; then
   "$@" "$exe" "$work/resume.json" --output "$work/uninterrupted" > "$work/uninterrupted.log" 2>&1
-  /usr/bin/python3 "$(dirname "$0")/compare_runs.py" "$work/uninterrupted" "$run"
+  /usr/bin/python3 "$(dirname "$0")/../../tools/compare_outputs.py" --results-only "$work/uninterrupted" "$run"
 fi

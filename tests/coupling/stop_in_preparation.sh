@@ -33,7 +33,7 @@ for k in 0 1; do
   "$exe" "$case" --resume "$out" > "$out.resume.log" 2>&1 || status=$?
   [ $status -eq 2 ] && grep -q "no checkpoint" "$out.resume.log" || { cat "$out.resume.log"; fail "resume not refused"; }
   "$exe" "$case" --output "$out" > "$out.again.log" 2>&1 || { cat "$out.again.log"; fail "new run after the stop"; }
-  /usr/bin/python3 "$here/compare_runs.py" "$work/fresh" "$out"
+  /usr/bin/python3 "$here/../../tools/compare_outputs.py" --results-only "$work/fresh" "$out"
 done
 # From outside: 0.3 s after the start (MPI start-up or validation on most machines), and as
 # soon as the packings folder appears (the preparation).

@@ -43,5 +43,5 @@ done
 echo "3 resumes on a full disk: $(head -c 200 "$work/err.log")"
 rm "$disk/filler"
 "$exe" "$work/case.json" --resume "$disk/run" > /dev/null || { echo "resume with space failed"; exit 1; }
-/usr/bin/python3 "$here/../coupling/compare_runs.py" "$work/reference" "$disk/run" || failures=$((failures + 1))
+/usr/bin/python3 "$here/../../tools/compare_outputs.py" --results-only "$work/reference" "$disk/run" || failures=$((failures + 1))
 [ $failures -eq 0 ]

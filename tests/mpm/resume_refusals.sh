@@ -133,7 +133,7 @@ for attempt in 1 2; do
 done
 rmdir "$work/run/results.h5.resume_tmp"
 expect 0 "" "$work/case.json" --resume "$work/run"
-/usr/bin/python3 "$here/../coupling/compare_runs.py" "$work/reference" "$work/run" > /dev/null || fail "resumed run differs from the uninterrupted one"
+/usr/bin/python3 "$here/../../tools/compare_outputs.py" --results-only "$work/reference" "$work/run" > /dev/null || fail "resumed run differs from the uninterrupted one"
 
 scenario="--output name the system cannot resolve"
 fresh; expect 2 "--output .*: File name too long" "$work/case.json" --resume "$work/run" \
@@ -161,7 +161,7 @@ MPM_LIG_TERM_AT_STEP=40 timeout 60 "$exe" "$work/case.json" --output "$work/last
   fail "exit $?: $(tail -c 300 "$work/out.log")"
 ! grep -q "stopped by a signal" "$work/out.log" || fail "stopped after its last step"
 [ -f "$work/last/summary.json" ] || fail "no summary.json: the run did not complete"
-/usr/bin/python3 "$here/../coupling/compare_runs.py" "$work/reference" "$work/last" > /dev/null ||
+/usr/bin/python3 "$here/../../tools/compare_outputs.py" --results-only "$work/reference" "$work/last" > /dev/null ||
   fail "differs from the uninterrupted run"
 
 scenario="safe keys changed: end, output.every, title"

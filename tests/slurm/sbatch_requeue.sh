@@ -7,7 +7,7 @@
 #      later) stops mpm_lig with exit 4 and a checkpoint, and the script requeues the job;
 #   2. the requeued job resumes from that checkpoint and completes (exit 0, summary.json), its
 #      history.csv and results.h5 bit-identical to an uninterrupted run of the same case
-#      (tests/coupling/compare_runs.py);
+#      (tools/compare_outputs.py --results-only);
 #   3. a run that fails (an engine error injected with MPM_LIG_FAULT_POINT) is not requeued.
 # The case: CASE.json asked for far more steps than it can make before the signal, with
 # checkpoints every 20 steps; once it has stopped, its end is set to 150 steps after the stop
@@ -234,7 +234,7 @@ grep -q "resuming from $work/run/checkpoints/$latest" "$work/run.out" ||
 [[ -f $work/run/summary.json ]] || fail "no summary.json after the requeued job"
 echo "allocation 2: resumed from $latest, completed to step $end (exit 0)"
 wait "$reference" || fail "the uninterrupted run failed: $(tail -n 5 "$work/uninterrupted.log")"
-/usr/bin/python3 "$source_dir/tests/coupling/compare_runs.py" "$work/uninterrupted" "$work/run" ||
+/usr/bin/python3 "$source_dir/tools/compare_outputs.py" --results-only "$work/uninterrupted" "$work/run" ||
   fail "the requeued run differs from the uninterrupted one"
 
 # 3. The failed run: exit 3, not requeued.

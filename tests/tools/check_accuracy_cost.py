@@ -18,7 +18,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOOLS = os.path.join(HERE, "..", "..", "tools")
 TOOL = os.path.join(TOOLS, "accuracy_cost.py")
 FAKE = os.path.join(HERE, "fake_mpm_lig.py")
-sys.path.insert(0, TOOLS)
 
 
 def expect(condition, message):

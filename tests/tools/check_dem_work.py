@@ -79,7 +79,6 @@ def real(work, mpm_lig):
 
 
 def bad(work):
-    sys.path.insert(0, HERE)
     from synthetic import write_fields
     shutil.rmtree(work, ignore_errors=True)
     write_fields(work, [(0, 0.0, {"positions": np.zeros((3, 3)), "dem_substeps_m1": np.ones(3)})])
@@ -91,7 +90,6 @@ def bad(work):
 
 
 def below(work):
-    sys.path.insert(0, HERE)
     from synthetic import write_fields
     shutil.rmtree(work, ignore_errors=True)
 

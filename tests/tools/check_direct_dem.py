@@ -19,7 +19,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOOLS = os.path.join(HERE, "..", "..", "tools")
 TOOL = os.path.join(TOOLS, "direct_dem.py")
 TINY = os.path.join(HERE, "direct_dem_tiny.json")
-sys.path.insert(0, TOOLS)
 
 failures = []
 

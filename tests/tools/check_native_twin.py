@@ -19,7 +19,6 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOL = os.path.join(HERE, "..", "..", "tools", "native_twin.py")
-sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
 
 
 def expect(condition, message):

@@ -17,8 +17,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOLS = os.path.join(HERE, "..", "..", "tools")
-sys.path.insert(0, HERE)
-import synthetic  # noqa: E402
+import synthetic
 
 
 def run_tool(tool, *args, dpi=100):
@@ -109,7 +108,6 @@ def shear_element(work):
     # has 4); below 0.3 P0 after c = ln 0.3 / ln 0.6 = 2.357, which on the sine strain path is
     # 2 + (1 + 1 - sin(2π 0.357)) / 4 cycles of path (the first row past it: 1/40 cycle later).
     expect("p' < 0.1 p'0: not reached" in result.stdout, "liquefaction line")
-    sys.path.insert(0, TOOLS)
     from mpm_lig_post.shear import cycles_to_liquefaction
     at = cycles_to_liquefaction(np.array(gamma), np.array(p), fraction=0.3)
     c = math.log(0.3) / math.log(P_RATIO)
@@ -200,7 +198,6 @@ def force_chains(work):
     os.makedirs(snaps, exist_ok=True)
     for step, compress in ((0, 0.0), (300, 0.1)):
         synthetic.write_snapshot(os.path.join(snaps, "rve_%06d" % step), *packing(step, compress))
-    sys.path.insert(0, TOOLS)
     from mpm_lig_post.vtk_legacy import read_polydata
     contacts = read_polydata(os.path.join(snaps, "rve_000300_contacts.vtk"))
     expect(contacts.lines().shape == (180, 2, 3), f"contact lines {contacts.lines().shape}")

@@ -5,8 +5,8 @@ naming the file or option and no traceback, nothing created; and the study's ang
 compared by their absolute error in degrees, a quantity the runs never reach said so.
 
 usage: check_tool_robustness.py CASE WORK_DIR
-  CASE: random_bytes | output_folder | bad_numbers | compare_outputs | compare_cost_column |
-        native_twin_restart | interrupt | missing_packages | element_angles
+  CASE: random_bytes | output_folder | bad_numbers | compare_outputs | compare_runs |
+        compare_cost_column | native_twin_restart | interrupt | missing_packages | element_angles
 """
 import json
 import math
@@ -22,9 +22,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOLS = os.path.join(HERE, "..", "..", "tools")
 FAKE = os.path.join(HERE, "fake_mpm_lig.py")
-sys.path.insert(0, HERE)
-import fake_mpm_lig  # noqa: E402
-import synthetic  # noqa: E402
+import fake_mpm_lig
+import synthetic
 
 ALL_TOOLS = ("accuracy_cost.py", "calibrate_continuum.py", "compare_cost.py",
              "compare_outputs.py", "cost_projection.py", "footing_intrusion.py",
@@ -334,6 +333,48 @@ def compare_outputs(work):
             os.path.join(other, "summary.json"))
 
 
+def compare_runs(work):
+    """compare_outputs.py on several runs of one case that differ in how they ran: the
+    summaries differ (rank counts) and fail without --results-only, pass with it; --ranks
+    checks each summary's count; a changed dataset is named with its run and its largest
+    difference; a reference with too little output is refused (exit 2)."""
+    import h5py
+    from mpm_lig_post.fields import every_item
+
+    ref = field_run(os.path.join(work, "ref"))
+    runs = [ref]
+    for name in ("np2", "np3"):
+        runs.append(os.path.join(work, name))
+        shutil.copytree(ref, runs[-1])
+    for k, d in enumerate(runs):
+        write_json(os.path.join(d, "summary.json"), {"wall_seconds": 1.0 + k, "ranks": k + 1})
+    r = tool("compare_outputs.py", *runs)
+    expect(r.returncode == 1 and f"{runs[1]}: summary.json ranks: 1 vs 2" in r.stdout,
+           f"summaries that differ: {r.returncode} {r.stdout}")
+    r = tool("compare_outputs.py", "--results-only", *runs, "--ranks", 1, 2, 3)
+    datasets = len(every_item(os.path.join(ref, "results.h5")))
+    expect(r.returncode == 0 and f"bit-identical: 3 runs, {datasets} datasets, 22 history lines"
+           in r.stdout, f"--results-only: {r.returncode} {r.stdout} {r.stderr}")
+    r = tool("compare_outputs.py", "--results-only", *runs, "--ranks", 1, 2, 2)
+    expect(r.returncode == 1 and f"{runs[2]}/summary.json: ranks 3, expected 2" in r.stdout,
+           f"wrong rank count: {r.returncode} {r.stdout}")
+    refused(tool("compare_outputs.py", *runs, "--ranks", 1, 2), "--ranks short", "--ranks")
+    with h5py.File(os.path.join(runs[2], "results.h5"), "r+") as h5:
+        name = next(n for n, v in every_item(os.path.join(ref, "results.h5")).items()
+                    if "@" not in n and v.dtype.kind == "f" and v.ndim == 2)
+        h5[name][0, 0] += 0.5
+    r = tool("compare_outputs.py", "--results-only", *runs)
+    expect(r.returncode == 1 and f"{runs[2]}: results.h5:{name} differs (max |diff| 0.5)" in
+           r.stdout and runs[1] + ":" not in r.stdout, f"changed dataset: {r.stdout}")
+    short = field_run(os.path.join(work, "short"))
+    with open(os.path.join(short, "history.csv")) as f:
+        header_and_row = f.readlines()[:2]
+    with open(os.path.join(short, "history.csv"), "w") as f:
+        f.writelines(header_and_row)
+    refused(tool("compare_outputs.py", "--results-only", short, short), "too little output",
+            short, "too little output")
+
+
 def compare_cost_column(work):
     """A run lacking a column its quantities need: the message names that run's file."""
     a, b = element_run(os.path.join(work, "a"), 1e5), element_run(os.path.join(work, "b"), 1e5)
@@ -521,6 +562,6 @@ if __name__ == "__main__":
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     {f.__name__: f for f in (random_bytes, output_folder, bad_numbers, compare_outputs,
-                             compare_cost_column, native_twin_restart, interrupt,
+                             compare_runs, compare_cost_column, native_twin_restart, interrupt,
                              missing_packages, element_angles)}[case](work)
     print(f"{case}: ok")

@@ -114,13 +114,17 @@ def picture_path(args):
     return args.output or os.path.join(args.output_dir, args.default_png)
 
 
-def run(main):
+def run(main, failures=()):
     """Call main() and exit with what it returns (0 for None). Bad input ends with
     'tool: error: ...' on stderr and exit code 2 (argparse's usage errors exit 2 as well);
+    an exception of the types `failures` (a run that failed) with 'tool: ...' and 1;
     Ctrl-C with 'tool: interrupted' and 130; a closed output pipe (tool | head) quietly."""
     tool = tool_name()
     try:
         code = main()
+    except failures as e:
+        print(f"{tool}: {e}", file=sys.stderr)
+        sys.exit(1)
     except InputError as e:
         print(f"{tool}: error: {e}", file=sys.stderr)
         sys.exit(2)

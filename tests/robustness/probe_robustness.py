@@ -8,11 +8,11 @@ that fails; 0: input that must work), with a non-empty, printable message of bou
 matches the probe's pattern (the JSON path or option at fault), and, for a refusal, with no
 output folder and no other file created.
 
-    tools/probe_robustness.py build/mpm_lig                  # every category, table
-    tools/probe_robustness.py build/mpm_lig --category size  # one category
-    tools/probe_robustness.py build/mpm_lig --only deep_title --strict   # one probe (CTest)
-    tools/probe_robustness.py build/mpm_lig --list           # names and categories
-    tools/probe_robustness.py build/mpm_lig --extra my_probes.py --json counts.json
+    tests/robustness/probe_robustness.py build/mpm_lig                 # every category
+    tests/robustness/probe_robustness.py build/mpm_lig --category size # one category
+    tests/robustness/probe_robustness.py build/mpm_lig --only deep_title --strict  # (CTest)
+    tests/robustness/probe_robustness.py build/mpm_lig --list          # names, categories
+    tests/robustness/probe_robustness.py build/mpm_lig --extra my_probes.py --json counts.json
 
 Category hook: `--extra FILE.py` runs FILE.py with `probe`, `Probe`, `REPO`, `case`, `write_case`
 and `run_in` in its namespace; every function it decorates with @probe(category, name, ...)
@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, List, Optional
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 FREE_FLIGHT = REPO / "cases/mpm/free_flight.json"  # continuum, 400 steps, < 1 s
 PRANDTL = REPO / "cases/mpm/prandtl_tresca.json"  # continuum footing
 TINY_DEM = REPO / "tests/coupling/tiny_2x2.json"  # 4 DEM points, 80 discs, a few seconds

@@ -1,0 +1,188 @@
+"""Direct DEM footing runs (tools/direct_dem.py) against the multiscale runs of the same case:
+one table, the load curves and the eps_q fields at one settlement.
+
+usage: direct_dem_compare.py RUN_DIR [RUN_DIR ...] [--multiscale-table docs/footing_dem_e0187.md]
+                             [--rows "DEM, h = B/4, flip 0.99" ...] [--at 0.5]
+                             [--pictures B4.png B8.png] [-o PREFIX] [--dpi N]
+
+Each RUN_DIR is a direct-DEM output (summary.json, history.csv, results.h5). The multiscale
+numbers are read from their one home, the load table of --multiscale-table (the rows whose first
+cell starts with a --rows text; columns: first peak, plateau over s/B 0.1-0.4, mean over
+0.4-1.0), never copied. Prints one row per run: grains, B/d, particle-steps, core-hours, peak
+q/q_s (at s/B), plateau 0.1-0.4, mean 0.4-1.0 (a window the run did not reach: '-') and the
+difference of each (first peak: the running maximum before the load first drops 10 % below it) against every multiscale row; writes PREFIX_load.png (q/q_s against s/B of
+every run, the multiscale peak and window means as marks) and PREFIX_fields.png (eps_q of each
+run at s/B = --at beside the --pictures of the multiscale fields), and PREFIX.json.
+Exit 2 on bad input (a folder without a summary, a row not in the table).
+"""
+import argparse
+import json
+import os
+import re
+
+import numpy as np
+
+from mpm_lig_post import checkout, cli, figures
+from mpm_lig_post.errors import InputError
+from mpm_lig_post.fields import FieldFile
+from mpm_lig_post.tables import read_history, read_json
+
+WINDOWS = (("plateau", 0.1, 0.4), ("mean", 0.4, 1.0))
+
+
+def first_number(cell):
+    m = re.search(r"[-+]?\d+(\.\d+)?", cell)
+    return float(m.group(0)) if m else None
+
+
+def multiscale_rows(path, prefixes):
+    """{row name: {"peak", "plateau", "mean"}} from the load table of the study page."""
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: file not found")
+    rows = {}
+    for line in open(path):
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) < 5:
+            continue
+        for prefix in prefixes:
+            if cells[0].startswith(prefix):
+                rows[prefix] = {"peak": first_number(cells[1]), "plateau": first_number(cells[3]),
+                                "mean": first_number(cells[4])}
+    for prefix in prefixes:
+        if prefix not in rows:
+            raise InputError(f"{path}: no table row starting with '{prefix}'")
+    return rows
+
+
+def first_peak(sB, q, drop=0.10):
+    """(q, s/B) of the first peak: the running maximum (from s/B 0.02) just before the load
+    first falls `drop` below it; the highest value when it never does."""
+    best, at = -np.inf, 0.0
+    for s, v in zip(sB, q):
+        if s < 0.02:
+            continue
+        if v > best:
+            best, at = v, s
+        elif v < (1.0 - drop) * best:
+            break
+    return float(best), float(at)
+
+
+def run_row(directory):
+    summary = read_json(os.path.join(directory, "summary.json"))
+    table = read_history(os.path.join(directory, "history.csv"))
+    sB, q = table["s_over_B"], table["q_over_qs"]
+    row = {"run": directory, "grains": summary["grains"], "B_over_d": summary["B_over_d"],
+           "seed": summary["seed"], "speed_factor": summary["speed_factor"],
+           "particle_steps": summary["particle_steps"],
+           "loading_particle_steps": summary["loading_steps"] * summary["grains"],
+           "core_hours": summary["core_seconds"] / 3600.0,
+           "wall_hours": summary["wall_seconds"] / 3600.0,
+           "reached": float(sB[-1]), "highest": float(q.max()),
+           "highest_at": float(sB[int(np.argmax(q))])}
+    row["peak"], row["peak_at"] = first_peak(sB, q)
+    for name, a, b in WINDOWS:
+        inside = (sB >= a) & (sB <= b)
+        row[name] = float(q[inside].mean()) if inside.any() and sB[-1] >= b - 1e-6 else None
+    return row, sB, q
+
+
+def fmt(v, spec=".2f"):
+    return "-" if v is None else format(v, spec)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("runs", nargs="+", metavar="RUN_DIR")
+    p.add_argument("--multiscale-table", default=checkout.path("docs", "footing_dem_e0187.md"))
+    p.add_argument("--rows", nargs="*", default=["DEM, h = B/4, flip 0.99",
+                                                 "DEM, h = B/8, flip 0.99"])
+    p.add_argument("--at", type=float, default=0.5, help="s/B of the field comparison")
+    p.add_argument("--pictures", nargs="*", default=[], help="multiscale field pictures to set beside")
+    p.add_argument("-o", "--output", default="direct_dem_compare")
+    p.add_argument("--dpi", type=int, default=150)
+    a = p.parse_args()
+    for d in a.runs:
+        if not os.path.isfile(os.path.join(d, "summary.json")):
+            raise InputError(f"{d}: no summary.json (not a direct_dem.py output)")
+    for picture in a.pictures:
+        if not os.path.isfile(picture):
+            raise InputError(f"{picture}: file not found")
+    multi = multiscale_rows(a.multiscale_table, a.rows)
+    rows, curves = [], []
+    for d in a.runs:
+        row, sB, q = run_row(d)
+        for name, m in multi.items():
+            for key in ("peak", "plateau", "mean"):
+                if row[key] is not None and m[key]:
+                    row[f"{key} vs {name}"] = row[key] / m[key] - 1.0
+        rows.append(row)
+        curves.append((d, sB, q, row))
+    head = (f"{'run':34s} {'grains':>7s} {'B/d':>5s} {'particle-steps':>14s} {'core-h':>7s} "
+            f"{'first peak':>12s} {'highest':>12s} {'0.1-0.4':>8s} {'0.4-1.0':>8s}")
+    print(head)
+    for r in rows:
+        print(f"{os.path.basename(os.path.normpath(r['run'])):34s} {r['grains']:7d} "
+              f"{r['B_over_d']:5.0f} {r['particle_steps']:14.3g} {r['core_hours']:7.3f} "
+              f"{r['peak']:6.2f} ({r['peak_at']:.2f}) {r['highest']:6.2f} ({r['highest_at']:.2f}) "
+              f"{fmt(r['plateau']):>8s} {fmt(r['mean']):>8s}")
+        for name in multi:
+            diffs = [f"{key} {100 * r[f'{key} vs {name}']:+.0f} %" for key in
+                     ("peak", "plateau", "mean") if f"{key} vs {name}" in r]
+            print(f"    against {name}: {', '.join(diffs)}")
+    with open(a.output + ".json", "w") as f:
+        json.dump({"runs": rows, "multiscale": multi, "table": a.multiscale_table}, f, indent=1)
+    print(f"wrote {a.output}.json")
+
+    fig, ax = figures.subplots(figsize=(7.5, 4.6))
+    for d, sB, q, r in curves:
+        ax.plot(sB, q, lw=1.0, label=f"direct DEM, B/d = {r['B_over_d']:.0f}, seed {r['seed']}"
+                + (f", speed x{r['speed_factor']:g}" if r["speed_factor"] != 1 else ""))
+    for (name, m), colour in zip(multi.items(), ("k", "0.45", "0.7")):
+        ax.plot([0.1, 0.4], [m["plateau"]] * 2, "-", color=colour, lw=3, alpha=0.6)
+        ax.plot([0.4, 1.0], [m["mean"]] * 2, "--", color=colour, lw=3, alpha=0.6)
+        ax.axhline(m["peak"], color=colour, lw=0.8, ls=":", label=f"{name}: peak (dotted), "
+                   "window means (bars)")
+    ax.set_xlabel("settlement s/B")
+    ax.set_ylabel(r"footing pressure $q/q_s$")
+    ax.set_xlim(0, max(1.0, max(c[1][-1] for c in curves)))
+    ax.set_ylim(bottom=0)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=1, frameon=False, fontsize=8)
+    figures.save(fig, a.output + "_load.png", a.dpi)
+
+    panels = [c for c in curves if c[1][-1] >= a.at - 1e-6]
+    if not panels:
+        return
+    import matplotlib.image as mpimg
+
+    from mpm_lig_post.commands import plot_fields
+
+    n = len(panels) + len(a.pictures)
+    fig, axes = figures.subplots(1, n, figsize=(5.2 * n, 5.0), squeeze=False)
+    for ax, (d, sB, q, r) in zip(axes[0], panels):
+        fields = FieldFile(os.path.join(d, "results.h5"))
+        step = fields.step(min(fields.steps, key=lambda s: abs(s / 1000.0 - a.at)))
+        xy = step["positions"][:, :2]
+        spacing = plot_fields.point_spacing(step, 2, len(xy))
+        tri = plot_fields.triangulation(xy, spacing)
+        eq = step["deviatoric_strain"]
+        plot_fields.contour(fig, ax, tri, eq, r"$\varepsilon_q$", "viridis",
+                            float(np.percentile(eq, 99)))
+        ax.set_title(f"direct DEM B/d = {r['B_over_d']:.0f}, s/B = {step.step / 1000:.2f}")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        fields.close()
+    for ax, picture in zip(axes[0][len(panels):], a.pictures):
+        ax.imshow(mpimg.imread(picture))
+        ax.set_axis_off()
+        ax.set_title(os.path.basename(picture), fontsize=9)
+    figures.save(fig, a.output + "_fields.png", a.dpi)
+
+
+def entry():
+    """The command: tools/direct_dem_compare.py in a checkout, mpm-lig-direct-dem-compare installed."""
+    cli.run(main)
+
+
+if __name__ == "__main__":
+    entry()

@@ -1,0 +1,121 @@
+"""Macroscopic friction angle from drained biaxial/triaxial element tests.
+
+usage: friction_angle.py RUN_DIR RUN_DIR [...] [--residual A B] [--json OUT.json]
+
+Each RUN_DIR holds history.csv and summary.json of one mpm_lig element test. For every run the
+peak state is the row of largest stress ratio (σ1 − σ3)/(σ1 + σ3) (principal stresses,
+compression positive; in-plane for 2D runs). A straight line through the peak states in the
+plane s = (σ1 + σ3)/2, t = (σ1 − σ3)/2 (Mohr–Coulomb: t = s sin φ' + c' cos φ') gives φ' and c'.
+With runs at two or more confining pressures the fit separates friction from cohesion; the
+per-run mobilised angles are printed too. --residual A B adds each run's residual angle: the
+mean mobilised angle over the rows whose axial strain (the most compressive of e_xx, e_yy,
+e_zz, positive in compression) lies in [A, B], and the mean over the runs (for a softening soil, e.g. 0.10 0.15).
+"""
+from mpm_lig_post.requirements import require
+
+require("numpy")
+
+import json  # noqa: E402
+import math  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.quantities import peak_ratio_row, principal_stresses  # noqa: E402
+from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
+
+STRESS_COLUMNS = ("s_xx", "s_yy", "s_zz", "s_xy", "s_xz", "s_yz")
+
+
+def peak_state(run_dir):
+    summary = read_json(f"{run_dir}/summary.json")
+    if "dimension" not in summary:
+        raise InputError(f"{run_dir}/summary.json: missing key 'dimension'")
+    history_path = f"{run_dir}/history.csv"
+    table = read_history(history_path)
+    require_columns(table, STRESS_COLUMNS, history_path)
+    s1, s3 = principal_stresses(table, summary["dimension"])
+    k = peak_ratio_row(s1, s3)
+    if k is None:
+        raise InputError(f"{history_path}: no loaded state")
+    best = ((s1[k] - s3[k]) / (s1[k] + s3[k]), s1[k], s3[k])
+    return summary, best
+
+
+def residual_angle(run_dir, low, high):
+    """Mean mobilised friction angle [deg] over the rows with axial strain in [low, high]."""
+    summary = read_json(f"{run_dir}/summary.json")
+    history_path = f"{run_dir}/history.csv"
+    table = read_history(history_path)
+    require_columns(table, STRESS_COLUMNS + ("e_xx", "e_yy", "e_zz"), history_path)
+    s1, s3 = principal_stresses(table, summary["dimension"])
+    # Strains are tension positive; a dilating sample's lateral strain may exceed the axial one.
+    axial = -np.min([table["e_xx"], table["e_yy"], table["e_zz"]], axis=0)
+    rows = (axial >= low) & (axial <= high) & (s1 + s3 > 0)
+    if not rows.any():
+        raise InputError(f"{history_path}: no row with axial strain in [{low:g}, {high:g}] "
+                         f"(largest {axial.max():.4g})")
+    ratio = (s1[rows] - s3[rows]) / (s1[rows] + s3[rows])
+    return float(np.degrees(np.arcsin(np.clip(ratio, -1.0, 1.0))).mean())
+
+
+def main():
+    parser = cli.ArgumentParser(description=__doc__.split("\n")[1])
+    parser.add_argument("runs", nargs="+")
+    parser.add_argument("--residual", nargs=2, type=cli.non_negative, metavar=("A", "B"),
+                        help="also the mean mobilised angle over axial strains in [A, B]")
+    parser.add_argument("--json", help="write the result here")
+    args = parser.parse_args()
+    cli.writable_file(args.json, "--json file")
+    if args.residual and not args.residual[0] < args.residual[1] < 1.0:
+        raise InputError(f"--residual {args.residual[0]:g} {args.residual[1]:g}: expected "
+                         "0 <= A < B < 1 (axial strains)")
+    s_points, t_points, rows = [], [], []
+    for run in args.runs:
+        summary, (ratio, s1, s3) = peak_state(run)
+        s, t = 0.5 * (s1 + s3), 0.5 * (s1 - s3)
+        s_points.append(s)
+        t_points.append(t)
+        rows.append({"run": run, "test": summary.get("test"), "sigma1": s1, "sigma3": s3,
+                     "mobilised_friction_deg": math.degrees(math.asin(ratio))})
+        if args.residual:
+            rows[-1]["residual_friction_deg"] = residual_angle(run, *args.residual)
+    extra = f" {'phi_res [deg]':>13s}" if args.residual else ""
+    print(f"{'run':40s} {'sigma3 [kPa]':>12s} {'sigma1 [kPa]':>12s} {'phi_mob [deg]':>13s}{extra}")
+    for r in rows:
+        extra = f" {r['residual_friction_deg']:13.2f}" if args.residual else ""
+        print(f"{r['run']:40s} {r['sigma3']/1e3:12.1f} {r['sigma1']/1e3:12.1f} "
+              f"{r['mobilised_friction_deg']:13.2f}{extra}")
+    result = {"runs": rows}
+    if args.residual:
+        mean = sum(r["residual_friction_deg"] for r in rows) / len(rows)
+        result["residual_friction_deg"] = mean
+        print(f"residual angle over axial strain {args.residual[0]:g}-{args.residual[1]:g}, mean of "
+              f"{len(rows)} runs: {mean:.2f} deg")
+    spread = (max(s_points) - min(s_points)) / (sum(s_points) / len(s_points))
+    if len(rows) >= 2 and spread < 0.2:
+        print("the runs' mean stresses at peak differ by less than 20 %: no fit (give runs at "
+              "clearly different confining pressures)")
+    elif len(rows) >= 2:
+        slope, intercept = np.polyfit(s_points, t_points, 1)
+        slope = min(max(slope, -1.0), 1.0)
+        phi = math.asin(slope)
+        cohesion = intercept / math.cos(phi)
+        result.update({"friction_angle_deg": math.degrees(phi), "cohesion_pa": cohesion})
+        print(f"Mohr-Coulomb fit of {len(rows)} peak states: phi' = {math.degrees(phi):.2f} deg, "
+              f"c' = {cohesion/1e3:.2f} kPa")
+    else:
+        print("one run only: give runs at two or more confining pressures for a fit")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(result, f, indent=2)
+
+
+def entry():
+    """The command: tools/friction_angle.py in a checkout, mpm-lig-friction-angle installed."""
+    cli.run(main)
+
+
+if __name__ == "__main__":
+    entry()

@@ -1,0 +1,252 @@
+"""Stepping efficiency and wall time of a dem_rve run projected to other rank counts, from the
+run's cost record (<output>/packings/m<id>/cost_record.h5, docs/outputs.md).
+
+For each rank count R (one rank per RVE) and each step of the record, the points' measured
+work in particle-steps, (DEM steps + update_cost_steps) x grains, is laid out on R groups:
+  round_robin  point i on group i mod R (the dealt start; what runs without the balancer)
+  balancer     the run's balancer replayed: moves planned from the predicted costs before each
+               step (src/coupling/rve_balance.cpp, same rule), their cost added to the step
+  lpt          longest processing time first on the step's own measured costs (a reference)
+  bound        max(costliest point, mean load): no assignment does better
+Stepping efficiency = sum work / (R x sum_steps busiest group's work). Wall time per step =
+busiest work / rate + gather(R, points), the rate (particle-steps/s per core, fixed cost
+included) from the record's own measured seconds unless --rate is given, the gather from
+bench_allgather's JSON (--gather; fitted as a log2(R) + b x bytes) or defaults stated in the
+output.
+
+usage: scaling_model.py RECORD_OR_OUTPUT [--ranks 2,4,...] [--tile K] [--gather FILE]
+       [--rate R] [--threshold T --horizon H --move-cost C] [--update-cost U]
+       [--json FILE] [--plot FILE]
+--tile K repeats every point K times in a row (neighbours of the same cost, as in a K times
+finer numbering of the same field): a crude stand-in for a larger case.
+"""
+import argparse
+import glob
+import json
+import math
+import os
+import sys
+
+import numpy as np
+
+DEFAULT_GATHER = {"latency": 5e-6, "per_byte": 1e-9, "source": "assumed (no --gather)"}
+WIDTH_BYTES = 11 * 8  # doubles per point in the exchange
+
+
+def fail(message):
+    sys.exit("scaling_model.py: " + message)
+
+
+def read_record(path):
+    import h5py
+    if os.path.isdir(path):
+        found = sorted(glob.glob(os.path.join(path, "packings", "m*", "cost_record.h5")))
+        if not found:
+            fail("no packings/m*/cost_record.h5 in '%s'" % path)
+        path = found[0]
+    try:
+        with h5py.File(path, "r") as f:
+            r = {k: np.asarray(f[k][()]) for k in
+                 ("predicted_steps", "measured_steps", "seconds", "group", "groups")}
+            r["grains"] = float(f.attrs["grains"])
+            r["update_cost_steps"] = float(f.attrs["update_cost_steps"])
+    except (OSError, KeyError) as e:
+        fail("'%s' is not a cost record: %s" % (path, e))
+    if r["measured_steps"].ndim != 2 or r["measured_steps"].shape[0] == 0:
+        fail("'%s' holds no rows" % path)
+    r["file"] = path
+    return r
+
+
+def work_of(steps, ran, grains, update_cost):
+    return np.where(ran, (steps + update_cost) * grains, 0.0)
+
+
+def loads(cost, owner, groups):
+    return np.bincount(owner, weights=cost, minlength=groups)
+
+
+def plan_moves(cost, owner, groups, threshold, horizon, move_cost):
+    """The balancer's rule (rve_balance.cpp plan_moves): returns the new owners."""
+    load = loads(cost, owner, groups)
+    total = load.sum()
+    before = load.max()
+    if groups < 2 or total <= 0 or before <= (1 + threshold) * total / groups:
+        return owner
+    trial = owner.copy()
+    best, best_value = owner, 0.0
+    for _ in range(2 * len(cost) + 2):
+        src, dst = int(np.argmax(load)), int(np.argmin(load))
+        diff = load[src] - load[dst]
+        mask = (trial == src) & (cost > 0) & (cost < diff)
+        if not mask.any():
+            break
+        miss = np.where(mask, np.abs(cost - 0.5 * diff), np.inf)
+        pick = int(np.argmin(miss))
+        trial[pick] = dst
+        load[src] -= cost[pick]
+        load[dst] += cost[pick]
+        value = horizon * (before - load.max()) - move_cost * np.count_nonzero(trial != owner)
+        if value > best_value:
+            best_value, best = value, trial.copy()
+    return best
+
+
+def lpt(cost, groups):
+    order = np.argsort(-cost, kind="stable")
+    load = np.zeros(groups)
+    owner = np.zeros(len(cost), dtype=np.int64)
+    for i in order:
+        g = int(np.argmin(load))
+        owner[i] = g
+        load[g] += cost[i]
+    return owner
+
+
+def project(r, ranks, tile, threshold, horizon, move_cost_steps):
+    grains, u = r["grains"], r["update_cost_steps"]
+    measured = np.repeat(r["measured_steps"].astype(float), tile, axis=1)
+    predicted = np.repeat(r["predicted_steps"].astype(float), tile, axis=1)
+    ran = measured > 0
+    work = work_of(measured, ran, grains, u)
+    pred = work_of(predicted, ran | (predicted > 0), grains, u)
+    points = work.shape[1]
+    move_cost = move_cost_steps * grains
+    dealt = np.arange(points) % ranks
+    total = work.sum()
+    out = {"round_robin": 0.0, "balancer": 0.0, "lpt": 0.0, "bound": 0.0}
+    owner = dealt.copy()
+    migrations = 0
+    for s in range(work.shape[0]):
+        out["round_robin"] += loads(work[s], dealt, ranks).max()
+        out["bound"] += max(work[s].max(), work[s].sum() / ranks)
+        if ranks <= points:
+            out["lpt"] += loads(work[s], lpt(work[s], ranks), ranks).max()
+        else:
+            out["lpt"] += work[s].max()
+        new = plan_moves(pred[s], owner, ranks, threshold, horizon, move_cost)
+        moved = int(np.count_nonzero(new != owner))
+        migrations += moved
+        owner = new
+        # A move costs its two groups the move cost; the step waits for the busiest.
+        out["balancer"] += loads(work[s], owner, ranks).max() + (move_cost if moved else 0.0)
+    eff = {k: (total / (ranks * v) if v > 0 else 1.0) for k, v in out.items()}
+    return eff, out, migrations, points
+
+
+def gather_model(path):
+    if not path:
+        return dict(DEFAULT_GATHER)
+    try:
+        rows = [row for row in json.load(open(path))["rows"] if row["ranks"] >= 2]
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        fail("'%s' is not bench_allgather JSON: %s" % (path, e))
+    if not rows:
+        fail("'%s' has no rows with 2 or more ranks" % path)
+    a = np.array([[math.log2(row["ranks"]), row["points"] * WIDTH_BYTES * (row["ranks"] - 1)
+                   / row["ranks"]] for row in rows])
+    t = np.array([row["median_seconds"] for row in rows])
+    coef, *_ = np.linalg.lstsq(a, t, rcond=None)
+    coef = np.maximum(coef, [1e-7, 1e-12])
+    return {"latency": float(coef[0]), "per_byte": float(coef[1]),
+            "source": "fitted to %s (%d rows, ranks %d-%d)"
+            % (path, len(rows), min(x["ranks"] for x in rows), max(x["ranks"] for x in rows))}
+
+
+def gather_seconds(model, ranks, points):
+    if ranks < 2:
+        return 0.0
+    return (model["latency"] * math.log2(ranks)
+            + model["per_byte"] * points * WIDTH_BYTES * (ranks - 1) / ranks)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("record")
+    p.add_argument("--ranks", default=",".join(str(2 ** k) for k in range(1, 13)))
+    p.add_argument("--tile", type=int, default=1)
+    p.add_argument("--gather")
+    p.add_argument("--rate", type=float)
+    p.add_argument("--threshold", type=float, default=0.02)
+    p.add_argument("--horizon", type=int, default=10)
+    p.add_argument("--move-cost", type=float, default=60.0, help="DEM steps of one RVE")
+    p.add_argument("--update-cost", type=float,
+                   help="fixed cost per update in DEM steps (default: the record's)")
+    p.add_argument("--json")
+    p.add_argument("--plot")
+    a = p.parse_args()
+    try:
+        ranks = [int(x) for x in a.ranks.split(",")]
+    except ValueError:
+        fail("--ranks: expected a comma-separated list of integers, got '%s'" % a.ranks)
+    if not ranks or min(ranks) < 1 or a.tile < 1:
+        fail("--ranks and --tile must be >= 1")
+    r = read_record(a.record)
+    if a.update_cost is not None:
+        if a.update_cost < 0:
+            fail("--update-cost must be >= 0")
+        r["update_cost_steps"] = a.update_cost
+    ran = r["measured_steps"] > 0
+    measured_work = work_of(r["measured_steps"], ran, r["grains"], r["update_cost_steps"]).sum()
+    seconds = float(r["seconds"].astype(float).sum())
+    if a.rate:
+        rate, rate_source = a.rate, "given"
+    elif seconds > 0:
+        rate, rate_source = measured_work / seconds, "the record's measured seconds"
+    else:
+        fail("the record has no measured seconds: give --rate")
+    gm = gather_model(a.gather)
+    steps = r["measured_steps"].shape[0]
+    rows = []
+    print("%s: %d steps, %d points x tile %d, rate %.4g particle-steps/s per core (%s)"
+          % (r["file"], steps, r["measured_steps"].shape[1], a.tile, rate, rate_source))
+    print("gather: %.3g s x log2(R) + %.3g s/byte (%s)" % (gm["latency"], gm["per_byte"],
+                                                           gm["source"]))
+    print("%6s %7s %9s %9s %9s %9s %12s %12s %10s" % (
+        "ranks", "pts/rk", "rr", "balancer", "lpt", "bound", "wall rr [s]", "wall bal [s]",
+        "moves"))
+    for R in ranks:
+        eff, makespan, migrations, points = project(r, R, a.tile, a.threshold, a.horizon,
+                                                    a.move_cost)
+        gather = gather_seconds(gm, R, points) * steps
+        wall = {k: makespan[k] / rate + gather for k in makespan}
+        rows.append({"ranks": R, "points_per_rank": points / R, "efficiency": eff,
+                     "wall_seconds": wall, "gather_seconds": gather, "migrations": migrations})
+        print("%6d %7.1f %9.3f %9.3f %9.3f %9.3f %12.4g %12.4g %10d" % (
+            R, points / R, eff["round_robin"], eff["balancer"], eff["lpt"], eff["bound"],
+            wall["round_robin"], wall["balancer"], migrations))
+    takeover = next((row["ranks"] for row in rows if row["efficiency"]["bound"] < 0.95), None)
+    note = ("the bound (the costliest point of each step alone) falls below 0.95 from %s ranks"
+            % takeover if takeover else "the bound stays above 0.95 up to %d ranks" % ranks[-1])
+    print(note)
+    result = {"record": r["file"], "tile": a.tile, "rate": rate, "rate_source": rate_source,
+              "gather": gm, "threshold": a.threshold, "horizon": a.horizon,
+              "move_cost_steps": a.move_cost, "rows": rows, "bound_takes_over_at": takeover}
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(result, f, indent=1)
+    if a.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(6, 4))
+        for key, label in (("round_robin", "round-robin"), ("balancer", "balancer"),
+                           ("lpt", "LPT per step"), ("bound", "bound (costliest point)")):
+            ax.plot(ranks, [row["efficiency"][key] for row in rows], marker="o", label=label)
+        ax.set_xscale("log", base=2)
+        ax.set_xlabel("MPI ranks (one per RVE group)")
+        ax.set_ylabel("stepping efficiency")
+        ax.set_ylim(0, 1.02)
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(a.plot, dpi=120)
+
+
+def entry():
+    """The command: tools/scaling_model.py in a checkout, mpm-lig-scaling-model installed."""
+    main()
+
+
+if __name__ == "__main__":
+    entry()
