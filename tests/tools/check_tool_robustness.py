@@ -6,7 +6,8 @@ compared by their absolute error in degrees, a quantity the runs never reach sai
 
 usage: check_tool_robustness.py CASE WORK_DIR
   CASE: random_bytes | output_folder | bad_numbers | compare_outputs | compare_runs |
-        compare_cost_column | native_twin_restart | interrupt | missing_packages | element_angles
+        compare_cost_column | native_twin_restart | interrupt | missing_packages | package |
+        element_angles
 """
 import json
 import math
@@ -502,6 +503,45 @@ def missing_packages(work):
     expect(r.returncode == 0, f"compare_outputs needs no matplotlib: {r.stderr}")
 
 
+def package(work):
+    """pyproject.toml against the tree: its dependencies are requirements.txt's, every command
+    names a module of mpm_lig_post.commands with an entry(), every tools/NAME.py is a wrapper
+    of the module of its name (and every module has one), setuptools finds both packages."""
+    import importlib
+    import tomllib
+
+    root = os.path.join(TOOLS, "..")
+    with open(os.path.join(root, "pyproject.toml"), "rb") as f:
+        project = tomllib.load(f)["project"]
+    requirements = [line.strip() for line in open(os.path.join(TOOLS, "requirements.txt"))
+                    if line.strip() and not line.startswith("#")]
+    expect(sorted(project["dependencies"]) == sorted(requirements),
+           f"pyproject dependencies {project['dependencies']} vs requirements.txt")
+    commands = os.path.join(TOOLS, "mpm_lig_post", "commands")
+    modules = sorted(n[:-3] for n in os.listdir(commands) if n.endswith(".py") and n[0] != "_")
+    wrappers = sorted(n[:-3] for n in os.listdir(TOOLS) if n.endswith(".py"))
+    expect(modules == wrappers, f"commands {modules} vs tools/*.py {wrappers}")
+    for name in wrappers:
+        text = open(os.path.join(TOOLS, name + ".py")).read()
+        expect(f"from mpm_lig_post.commands.{name} import entry" in text and
+               len(text.splitlines()) < 10, f"tools/{name}.py is not a thin wrapper")
+    scripts = project["scripts"]
+    expect(len(scripts) >= 15, f"only {len(scripts)} commands")
+    for command, target in scripts.items():
+        module, function = target.split(":")
+        expect(command == "mpm-lig-" + module.rsplit(".", 1)[1].replace("_", "-"),
+               f"{command} = {target}: the name is not the module's")
+        expect(callable(getattr(importlib.import_module(module), function, None)),
+               f"{command}: {target} is not a function")
+    try:
+        import setuptools
+    except ImportError:  # the checkout's way (tools/NAME.py) does not need it
+        print("no setuptools: package discovery not checked")
+        return
+    found = setuptools.find_packages(where=TOOLS)
+    expect({"mpm_lig_post", "mpm_lig_post.commands"} <= set(found), f"packages found: {found}")
+
+
 def element_angles(work):
     """A study of element tests whose angles are known (fake_mpm_lig): errors of angles in
     degrees (the dilatancy angle's reference is 0.001 deg: a relative error would be 900 %),
@@ -563,5 +603,5 @@ if __name__ == "__main__":
     os.makedirs(work)
     {f.__name__: f for f in (random_bytes, output_folder, bad_numbers, compare_outputs,
                              compare_runs, compare_cost_column, native_twin_restart, interrupt,
-                             missing_packages, element_angles)}[case](work)
+                             missing_packages, package, element_angles)}[case](work)
     print(f"{case}: ok")
