@@ -1,7 +1,10 @@
 #include "coupling/rve_balance.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
+#include <string>
+#include <utility>
 
 namespace mpm_lig::coupling {
 
@@ -35,11 +38,36 @@ std::size_t idlest(const std::vector<double>& load) {
   return static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
 }
 
-std::size_t moved(const std::vector<int>& a, const std::vector<int>& b) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    n += a[i] != b[i] ? 1 : 0;
-  return n;
+// Moves run in parallel, each group writing what leaves it and reading what arrives: their
+// time is that of the group with the most moves in or out.
+double busiest_migration(const std::vector<int>& touched) {
+  return touched.empty() ? 0.0
+                         : static_cast<double>(*std::max_element(touched.begin(), touched.end()));
+}
+
+// A point away from its group `was` counts as a move for both `was` and `now`.
+void count_move(std::vector<int>& touched, int was, int now, int sign) {
+  if (was == now)
+    return;
+  touched[static_cast<std::size_t>(was)] += sign;
+  touched[static_cast<std::size_t>(now)] += sign;
+}
+
+// The point of group `from` whose cost is closest to half of `diff` (below it), or npos.
+std::size_t point_to_move(const std::vector<std::size_t>& members, const std::vector<double>& cost,
+                          double diff) {
+  std::size_t pick = std::string::npos;
+  double pick_miss = 0.0;
+  for (const std::size_t i : members) {
+    if (cost[i] <= 0.0 || cost[i] >= diff)
+      continue;
+    const double miss = std::abs(cost[i] - 0.5 * diff);
+    if (pick == std::string::npos || miss < pick_miss) {
+      pick = i;
+      pick_miss = miss;
+    }
+  }
+  return pick;
 }
 
 }  // namespace
@@ -55,38 +83,43 @@ BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& 
       plan.makespan_before <= (1.0 + threshold) * total / static_cast<double>(groups))
     return plan;
   // Each move lowers Σ load² (c < diff), so the loop ends; the cap only bounds the work.
+  std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(groups));
+  for (std::size_t i = 0; i < cost.size(); ++i)
+    members[static_cast<std::size_t>(owner[i])].push_back(i);
   std::vector<int> trial = owner;
+  std::vector<int> touched(static_cast<std::size_t>(groups), 0);
+  std::vector<std::pair<std::size_t, int>> sequence;  // (point, its new group) per move
+  std::size_t best_prefix = 0;
   double best_value = 0.0;
   for (std::size_t step = 0; step < 2 * cost.size() + 2; ++step) {
     const std::size_t from = busiest(load), to = idlest(load);
-    const double diff = load[from] - load[to];
-    std::size_t pick = cost.size();
-    double pick_miss = 0.0;
-    for (std::size_t i = 0; i < cost.size(); ++i) {
-      if (static_cast<std::size_t>(trial[i]) != from || cost[i] <= 0.0 || cost[i] >= diff)
-        continue;
-      const double miss = std::abs(cost[i] - 0.5 * diff);
-      if (pick == cost.size() || miss < pick_miss) {
-        pick = i;
-        pick_miss = miss;
-      }
-    }
-    if (pick == cost.size())
+    const std::size_t pick = point_to_move(members[from], cost, load[from] - load[to]);
+    if (pick == std::string::npos)
       break;
+    count_move(touched, owner[pick], trial[pick], -1);
     trial[pick] = static_cast<int>(to);
+    count_move(touched, owner[pick], trial[pick], +1);
+    auto& left = members[from];
+    left.erase(std::find(left.begin(), left.end(), pick));
+    auto& joined = members[to];
+    joined.insert(std::lower_bound(joined.begin(), joined.end(), pick), pick);
     load[from] -= cost[pick];
     load[to] += cost[pick];
+    sequence.emplace_back(pick, trial[pick]);
     const double makespan = load[busiest(load)];
-    const std::size_t moves = moved(owner, trial);
     const double value = static_cast<double>(horizon) * (plan.makespan_before - makespan) -
-                         move_cost * static_cast<double>(moves);
+                         move_cost * busiest_migration(touched);
     if (value > best_value) {
       best_value = value;
-      plan.owner = trial;
-      plan.moves = moves;
+      best_prefix = sequence.size();
       plan.makespan_after = makespan;
     }
   }
+  for (std::size_t k = 0; k < best_prefix; ++k)
+    plan.owner[sequence[k].first] = sequence[k].second;
+  plan.moves = 0;
+  for (std::size_t i = 0; i < owner.size(); ++i)
+    plan.moves += plan.owner[i] != owner[i] ? 1 : 0;
   return plan;
 }
 

@@ -59,6 +59,31 @@ TEST(RveBalance, TiedBusiestGroupsAreBothRelieved) {
   EXPECT_EQ(plan_moves(cost, owner, 3, 0.0, 1, 1.0).moves, 0u);
 }
 
+TEST(RveBalance, ManyBusyGroupsAreRelievedTogetherAtTheCostOfOneMove) {
+  // Groups 0..3 carry 3 + 3 = 6, groups 4..7 nothing: one point of each busy group to an idle
+  // one gives 3 everywhere. The four moves run in parallel (one per group): over one update they
+  // gain 6 - 3 = 3, which pays a move cost of 2.9 but not of 3. Costed per moved point
+  // (4 × 2.9) no move would pay.
+  const std::vector<double> cost{3, 3, 3, 3, 3, 3, 3, 3};
+  const std::vector<int> owner{0, 0, 1, 1, 2, 2, 3, 3};
+  const BalancePlan plan = plan_moves(cost, owner, 8, 0.0, 1, 2.9);
+  EXPECT_EQ(plan.moves, 4u);
+  EXPECT_EQ(plan.makespan_after, 3.0);
+  EXPECT_EQ(makespan(cost, plan.owner, 8), 3.0);
+  const std::vector<double> load = group_loads(cost, plan.owner, 8);
+  EXPECT_EQ(*std::min_element(load.begin(), load.end()), 3.0);
+  EXPECT_EQ(plan_moves(cost, owner, 8, 0.0, 1, 3.0).moves, 0u);
+}
+
+TEST(RveBalance, TwoMovesIntoOneGroupCostTwo) {
+  // Groups 0 and 1 carry 3 each, group 2 nothing: one point of each to group 2 gives 2, 2, 2.
+  // Group 2 receives both, so the moves take 2 × move_cost: the gain of 1 pays 0.49, not 0.5.
+  const std::vector<double> cost{1, 1, 1, 1, 1, 1};
+  const std::vector<int> owner{0, 0, 0, 1, 1, 1};
+  EXPECT_EQ(plan_moves(cost, owner, 3, 0.0, 1, 0.49).moves, 2u);
+  EXPECT_EQ(plan_moves(cost, owner, 3, 0.0, 1, 0.5).moves, 0u);
+}
+
 TEST(RveBalance, LongestProcessingTimeFirstKnownCase) {
   // The textbook case where LPT ends at 10 while 9 ({5, 4}, {3, 3, 3}) is optimal.
   const std::vector<double> cost{3, 5, 3, 4, 3};

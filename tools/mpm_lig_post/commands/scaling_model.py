@@ -21,6 +21,7 @@ usage: scaling_model.py RECORD_OR_OUTPUT [--ranks 2,4,...] [--tile K] [--gather 
 finer numbering of the same field): a crude stand-in for a larger case.
 """
 import argparse
+import bisect
 import glob
 import json
 import math
@@ -66,6 +67,15 @@ def loads(cost, owner, groups):
     return np.bincount(owner, weights=cost, minlength=groups)
 
 
+def busiest_migration(new, owner, groups):
+    """Moves run in parallel: their time is that of the group with the most moves in or out."""
+    moved = new != owner
+    if not moved.any():
+        return 0
+    touched = np.bincount(owner[moved], minlength=groups) + np.bincount(new[moved], minlength=groups)
+    return int(touched.max())
+
+
 def plan_moves(cost, owner, groups, threshold, horizon, move_cost):
     """The balancer's rule (rve_balance.cpp plan_moves): returns the new owners."""
     load = loads(cost, owner, groups)
@@ -73,22 +83,33 @@ def plan_moves(cost, owner, groups, threshold, horizon, move_cost):
     before = load.max()
     if groups < 2 or total <= 0 or before <= (1 + threshold) * total / groups:
         return owner
+    members = [list(np.flatnonzero(owner == g)) for g in range(groups)]
     trial = owner.copy()
-    best, best_value = owner, 0.0
+    touched = np.zeros(groups, dtype=np.int64)
+    sequence, best_prefix, best_value = [], 0, 0.0
     for _ in range(2 * len(cost) + 2):
         src, dst = int(np.argmax(load)), int(np.argmin(load))
         diff = load[src] - load[dst]
-        mask = (trial == src) & (cost > 0) & (cost < diff)
-        if not mask.any():
+        candidates = [i for i in members[src] if 0 < cost[i] < diff]
+        if not candidates:
             break
-        miss = np.where(mask, np.abs(cost - 0.5 * diff), np.inf)
-        pick = int(np.argmin(miss))
+        pick = min(candidates, key=lambda i: (abs(cost[i] - 0.5 * diff), i))
+        for g, sign in ((trial[pick], -1), (dst, +1)):
+            if g != owner[pick]:
+                touched[owner[pick]] += sign
+                touched[g] += sign
         trial[pick] = dst
+        members[src].remove(pick)
+        bisect.insort(members[dst], pick)
         load[src] -= cost[pick]
         load[dst] += cost[pick]
-        value = horizon * (before - load.max()) - move_cost * np.count_nonzero(trial != owner)
+        sequence.append((pick, dst))
+        value = horizon * (before - load.max()) - move_cost * touched.max()
         if value > best_value:
-            best_value, best = value, trial.copy()
+            best_value, best_prefix = value, len(sequence)
+    best = owner.copy()
+    for pick, dst in sequence[:best_prefix]:
+        best[pick] = dst
     return best
 
 
@@ -124,12 +145,14 @@ def project(r, ranks, tile, threshold, horizon, move_cost_steps):
             out["lpt"] += loads(work[s], lpt(work[s], ranks), ranks).max()
         else:
             out["lpt"] += work[s].max()
+        previous = owner
         new = plan_moves(pred[s], owner, ranks, threshold, horizon, move_cost)
         moved = int(np.count_nonzero(new != owner))
         migrations += moved
         owner = new
-        # A move costs its two groups the move cost; the step waits for the busiest.
-        out["balancer"] += loads(work[s], owner, ranks).max() + (move_cost if moved else 0.0)
+        # The moves run in parallel; the step waits for the group with the most of them.
+        out["balancer"] += loads(work[s], owner, ranks).max() + move_cost * busiest_migration(
+            new, previous, ranks)
     eff = {k: (total / (ranks * v) if v > 0 else 1.0) for k, v in out.items()}
     return eff, out, migrations, points
 
