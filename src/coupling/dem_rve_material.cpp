@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -198,8 +197,7 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
 Packing DemRveMaterial::prepare_packing(std::size_t k, const std::string& file,
                                         MPI_Comm group_comm) const {
   const std::string label = path_ + " packing " + std::to_string(k);
-  if (hooks_.term_at_packing == static_cast<long>(k))
-    std::raise(SIGTERM);
+  hooks_.at(TestHooks::Moment::packing_started, static_cast<long>(k), 0);
   std::unique_ptr<rve::Rve> rve;
   if (spec_.restart_file.empty()) {
     rve::RveSpec spec = spec_;
