@@ -1,5 +1,6 @@
 #include "core/test_hooks.h"
 
+#include <csignal>
 #include <cstdlib>
 
 namespace mpm_lig {
@@ -11,6 +12,23 @@ long environment_number(const char* name, long fallback) {
 }
 
 }  // namespace
+
+void TestHooks::at(Moment moment, long index, int rank) const {
+  switch (moment) {
+    case Moment::step_recorded:
+      if (rank == 0 && index == term_at_step)
+        std::raise(SIGTERM);  // as a signal arriving during that step
+      return;
+    case Moment::step_finished:
+      if (rank == 0 && index == kill_at_step)
+        std::raise(SIGKILL);
+      return;
+    case Moment::packing_started:
+      if (index == term_at_packing)
+        std::raise(SIGTERM);  // as a signal in the middle of the preparation
+      return;
+  }
+}
 
 TestHooks TestHooks::from_environment() {
   TestHooks hooks;

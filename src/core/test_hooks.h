@@ -19,6 +19,16 @@ struct TestHooks {
   //! MPM_LIG_FAULT_UPDATE=u: ... at the u-th update of that material (default 1).
   long fault_update = 1;
 
+  //! The points of a run where a hook may act.
+  enum class Moment {
+    step_recorded,    //!< MPM step or element-test increment `index` is recorded
+    step_finished,    //!< MPM step `index` is done, its checkpoint included
+    packing_started,  //!< this rank starts preparing dem_rve packing `index`
+  };
+  //! The one seam of the hooks: at `moment` of step / increment / packing `index` on `rank`,
+  //! raises the signal the hooks ask for there (SIGTERM or SIGKILL); nothing otherwise.
+  void at(Moment moment, long index, int rank) const;
+
   //! The hooks the environment asks for (none when the variables are not set).
   static TestHooks from_environment();
 };

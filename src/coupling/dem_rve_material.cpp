@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -198,8 +197,7 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
 Packing DemRveMaterial::prepare_packing(std::size_t k, const std::string& file,
                                         MPI_Comm group_comm) const {
   const std::string label = path_ + " packing " + std::to_string(k);
-  if (hooks_.term_at_packing == static_cast<long>(k))
-    std::raise(SIGTERM);
+  hooks_.at(TestHooks::Moment::packing_started, static_cast<long>(k), 0);
   std::unique_ptr<rve::Rve> rve;
   if (spec_.restart_file.empty()) {
     rve::RveSpec spec = spec_;
@@ -518,17 +516,6 @@ void DemRveMaterial::update(const std::vector<std::size_t>& points, const std::v
     stress[i] = stress_[points[i]];
 }
 
-namespace {
-
-//! The run statistics of the quiet points in a checkpoint (QuietPoints::save_stats order).
-const char* const kQuietStatNames[QuietPoints::kStatValues] = {
-    "quiet_predictions",  "quiet_dem_updates",        "quiet_checks",
-    "quiet_error_sum",    "quiet_max_error",          "quiet_exceeded",
-    "continuum_updates",  "continuum_switches",       "continuum_jump_sum",
-    "continuum_max_jump", "continuum_jumps_exceeded", "continuum_threshold_scale"};
-
-}  // namespace
-
 void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::size_t points) {
   if (!layout_)
     throw std::logic_error(path_ + ": checkpoint before the first update");
@@ -548,10 +535,8 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
   write_points(out, layout_->gather(owned, static_cast<int>(point_checkpoint_width())));
   out.set("updates", static_cast<double>(updates_));
   out.set("particle_steps", cost_.particle_steps);
-  double stats[QuietPoints::kStatValues];
-  quiet_.save_stats(stats);
-  for (int k = 0; k < QuietPoints::kStatValues; ++k)
-    out.set(kQuietStatNames[k], stats[k]);
+  for (const QuietStatField& f : kQuietStatFields)
+    out.set(f.name, quiet_.stats().*f.value);
   // Where the RVEs are, so that a resume on as many groups makes the balancer's decisions
   // again; and the stepping totals so far.
   std::vector<double> owners{static_cast<double>(layout_->groups())};
@@ -611,9 +596,9 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     rves_[p]->restore(saved.rve);
   }
   updates_ = static_cast<long>(in.get("updates"));
-  double stats[QuietPoints::kStatValues];
-  for (int k = 0; k < QuietPoints::kStatValues; ++k)
-    stats[k] = in.get(kQuietStatNames[k]);
+  QuietStats stats;
+  for (const QuietStatField& f : kQuietStatFields)
+    stats.*f.value = in.get(f.name);
   quiet_.restore_stats(stats);
   cost_.simulations = points_;
   cost_.particle_steps = in.get("particle_steps");

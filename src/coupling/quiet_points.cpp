@@ -2,8 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace mpm_lig::coupling {
+
+const QuietStatField kQuietStatFields[12] = {
+    {"quiet_predictions", &QuietStats::predictions},
+    {"quiet_dem_updates", &QuietStats::dem_updates},
+    {"quiet_checks", &QuietStats::checks},
+    {"quiet_error_sum", &QuietStats::error_sum},
+    {"quiet_max_error", &QuietStats::max_error},
+    {"quiet_exceeded", &QuietStats::exceeded},
+    {"continuum_updates", &QuietStats::continuum_updates},
+    {"continuum_switches", &QuietStats::switches},
+    {"continuum_jump_sum", &QuietStats::jump_sum},
+    {"continuum_max_jump", &QuietStats::max_jump},
+    {"continuum_jumps_exceeded", &QuietStats::jumps_exceeded},
+    {"continuum_threshold_scale", &QuietStats::threshold_scale}};
+static_assert(sizeof(QuietStats) == std::size(kQuietStatFields) * sizeof(double),
+              "every QuietStats field needs its checkpoint name in kQuietStatFields");
 namespace {
 
 //! A tolerance is never tightened below this fraction of the case's.
@@ -247,18 +264,6 @@ void QuietPoints::restore_row(std::size_t point, const double* v) {
   r.quiet_updates = v[30];
   r.wave_modulus = v[31];
   r.continuum = v[32];
-}
-
-void QuietPoints::save_stats(double* v) const {
-  const double values[] = {stats_.predictions,       stats_.dem_updates,    stats_.checks,
-                           stats_.error_sum,         stats_.max_error,      stats_.exceeded,
-                           stats_.continuum_updates, stats_.switches,       stats_.jump_sum,
-                           stats_.max_jump,          stats_.jumps_exceeded, stats_.threshold_scale};
-  std::copy(values, values + kStatValues, v);
-}
-
-void QuietPoints::restore_stats(const double* v) {
-  stats_ = QuietStats{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11]};
 }
 
 }  // namespace mpm_lig::coupling

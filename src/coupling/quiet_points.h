@@ -46,6 +46,14 @@ struct QuietStats {
   double threshold_scale = 1.0;    //!< the switch thresholds' factor (halved by such a jump)
 };
 
+//! A QuietStats field and its name in a checkpoint.
+struct QuietStatField {
+  const char* name;
+  double QuietStats::*value;
+};
+//! Every QuietStats field under its checkpoint name (a new statistic: one field, one line here).
+extern const QuietStatField kQuietStatFields[12];
+
 //! Quiet points: a point whose deformation since its last DEM update is below a tolerance gets
 //! its stress predicted from its own packing's response, measured on its own DEM updates (an
 //! isotropic secant: bulk and shear moduli of the last update's volumetric and deviatoric
@@ -104,12 +112,11 @@ class QuietPoints {
   double tolerance(std::size_t point) const { return row(point).tolerance; }
   const QuietStats& stats() const { return stats_; }
 
-  //! Checkpoint: `values` gets kValues per point; the run statistics separately.
+  //! Checkpoint: `values` gets kValues per point; the run statistics separately (stats(),
+  //! by the names of kQuietStatFields).
   void save_row(std::size_t point, double* values) const;
   void restore_row(std::size_t point, const double* values);
-  static constexpr int kStatValues = 12;
-  void save_stats(double* values) const;
-  void restore_stats(const double* values);
+  void restore_stats(const QuietStats& stats) { stats_ = stats; }
 
  private:
   struct Row {

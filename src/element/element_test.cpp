@@ -52,8 +52,26 @@ class ElementTest : public Analysis {
   }
 
  private:
+  struct Loading;
+  class Outputs;
+
+  nlohmann::json describe() const;
   std::unique_ptr<rve::Rve> prepare(const RunContext& context, nlohmann::json& summary);
   double lateral_stiffness(rve::Rve& rve);
+  //! The lateral stress a drained test holds: the case's, or the prepared packing's.
+  double confining_pressure(const rve::Observables& now) const {
+    return test_.confining_pressure > 0.0 ? test_.confining_pressure
+                                          : mean_pressure(now.stress, rve_.dimension);
+  }
+  std::unique_ptr<StrainPath> plan_strain_path(rve::Rve& rve, const rve::Observables& now,
+                                               nlohmann::json& summary);
+  void stop_if_asked(const RunContext& context, int k, int n, int written) const;
+  int apply_increment(rve::Rve& rve, StrainPath& path, int k, Loading& state) const;
+  void load(const RunContext& context, rve::Rve& rve, StrainPath& path, Outputs& out,
+            Loading& state) const;
+  void finish_summary(const RunContext& context, const rve::Rve& rve, const Loading& state,
+                      double prepared_steps, double preparation_seconds,
+                      nlohmann::json& summary) const;
 
   rve::RveSpec rve_;
   ElementTestSpec test_;
@@ -186,126 +204,191 @@ double ElementTest::lateral_stiffness(rve::Rve& rve) {
   return std::max((p1 - p0) / probe, 10.0 * std::abs(p0));
 }
 
-RunEnd ElementTest::run(const RunContext& context) {
-  const auto start = std::chrono::steady_clock::now();
-  int rank = 0;
-  MPI_Comm_rank(context.comm, &rank);
-  const bool writer = rank == 0;
-  const std::filesystem::path dir(context.output_dir);
-  nlohmann::json summary = {
-      {"engine", rve_.engine},
-      {"test", test_.name},
-      {"dimension", rve_.dimension},
-      {"grains", rve_.grains},
-      {"time_step", rve_.time_step},
-      {"rayleigh_time_step", rve_.rayleigh_time_step},
-      {"affine_motion", rve_.stream_velocity ? "streaming_velocity" : "remap_positions"}};
-  auto rve = prepare(context, summary);
-  // The test's own DEM work: the preparation's is reported with it (as an MPM run counts only
-  // its main stage), so that cost models see the stepping alone.
-  const double prepared_steps = rve->particle_steps();
-  const double preparation_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  rve::Observables now = rve->observe();
-  rve->check_health(now);
-  double confining = test_.confining_pressure > 0.0 ? test_.confining_pressure
-                                                    : mean_pressure(now.stress, rve_.dimension);
-  double stiffness = 0.0;
-  if (test_.kind == TestKind::kDrainedCompression) {
-    stiffness = lateral_stiffness(*rve);
-    summary["confining_pressure"] = confining;
-    summary["servo_stiffness"] = stiffness;
-  }
-  const auto path = make_strain_path(test_, rve_.dimension, confining, stiffness);
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-  std::unique_ptr<io::CsvHistory> history;
-  if (writer)
-    history = std::make_unique<io::CsvHistory>((dir / "history.csv").string(), history_columns());
-  if (writer)
-    std::filesystem::create_directories(dir / "snapshots");
-  auto snapshot = [&](int k) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "rve_%06d", k);
-    rve::write_snapshot(*rve, (dir / "snapshots" / name).string(), writer);
-  };
-
+//! Where the loading stands after an increment.
+struct ElementTest::Loading {
   Mat3 F = Mat3::Identity();
   double time = 0.0;
-  if (writer)
-    history->write(history_row(0, time, F, now, rve_.dimension, 0));
-  snapshot(0);
-  double peak_friction = mobilised_friction_deg(now.stress, rve_.dimension);
-  nlohmann::json peak = state_json(now, rve_.dimension);
-  const int n = path->increments();
-  LateralControl lateral(confining, rve_.dimension);
-  int written = 0;  // the last increment in history.csv
+  rve::Observables now;
+  int written = 0;  //!< the last increment in history.csv
+  double peak_friction = 0.0;
+  nlohmann::json peak;
+  LateralControl lateral;
+  int substeps = 0;     //!< of the last increment, its corrections included
+  int corrections = 0;  //!< of the last increment
+
+  Loading(const rve::Observables& start, double confining, int dimension)
+      : now(start),
+        peak_friction(mobilised_friction_deg(start.stress, dimension)),
+        peak(state_json(start, dimension)),
+        lateral(confining, dimension) {}
+};
+
+//! What an element test writes as it loads (rank 0): history.csv and the RVE snapshots.
+class ElementTest::Outputs {
+ public:
+  Outputs(const RunContext& context, rve::Rve& rve, int dimension)
+      : dir_(context.output_dir), rve_(rve), dimension_(dimension) {
+    int rank = 0;
+    MPI_Comm_rank(context.comm, &rank);
+    writer_ = rank == 0;
+    if (!writer_)
+      return;
+    history_ = std::make_unique<io::CsvHistory>((dir_ / "history.csv").string(), history_columns());
+    std::filesystem::create_directories(dir_ / "snapshots");
+  }
+  void history(int k, const Loading& s) {
+    if (writer_)
+      history_->write(history_row(k, s.time, s.F, s.now, dimension_, s.substeps));
+  }
+  //! Collective over the RVE's ranks.
+  void snapshot(int k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "rve_%06d", k);
+    rve::write_snapshot(rve_, (dir_ / "snapshots" / name).string(), writer_);
+  }
+
+ private:
+  std::filesystem::path dir_;
+  rve::Rve& rve_;
+  int dimension_;
+  bool writer_ = false;
+  std::unique_ptr<io::CsvHistory> history_;
+};
+
+nlohmann::json ElementTest::describe() const {
+  return {{"engine", rve_.engine},
+          {"test", test_.name},
+          {"dimension", rve_.dimension},
+          {"grains", rve_.grains},
+          {"time_step", rve_.time_step},
+          {"rayleigh_time_step", rve_.rayleigh_time_step},
+          {"affine_motion", rve_.stream_velocity ? "streaming_velocity" : "remap_positions"}};
+}
+
+//! The test's strain path from the prepared state `now` (a drained test measures its servo's
+//! stiffness first).
+std::unique_ptr<StrainPath> ElementTest::plan_strain_path(rve::Rve& rve,
+                                                          const rve::Observables& now,
+                                                          nlohmann::json& summary) {
+  double stiffness = 0.0;
+  if (test_.kind == TestKind::kDrainedCompression) {
+    stiffness = lateral_stiffness(rve);
+    summary["confining_pressure"] = confining_pressure(now);
+    summary["servo_stiffness"] = stiffness;
+  }
+  return make_strain_path(test_, rve_.dimension, confining_pressure(now), stiffness);
+}
+
+void ElementTest::stop_if_asked(const RunContext& context, int k, int n, int written) const {
+  if (stop_requested(context.comm))
+    throw StopRequested("stopped by a signal after increment " + std::to_string(k) + " of " +
+                        std::to_string(n) + ": " + context.output_dir +
+                        "/history.csv holds increments 0 ... " + std::to_string(written) +
+                        ", no summary.json (an element test writes no checkpoints: run it "
+                        "again with --replace)");
+}
+
+//! Increment `k` of the path and its corrections; returns the DEM sub-steps it took.
+int ElementTest::apply_increment(rve::Rve& rve, StrainPath& path, int k, Loading& state) const {
+  const Mat3 dF = path.increment(k, state.now.stress);
+  int substeps = rve.deform(dF);
+  state.F = dF * state.F;
+  // Stress-controlled directions: correct within the increment until on target. Each
+  // correction takes the sub-steps the RVE's rule gives for its strain (the same inertial
+  // number as the increment): measured on the quickstart case, 1.8 corrections per increment
+  // cost 6 % more DEM steps; as many sub-steps as the increment itself needed 2.6
+  // corrections and 55 % more.
+  Mat3 stress = rve.stress();
+  int corrections = 0;
+  for (std::optional<Mat3> c;
+       corrections < test_.max_corrections && (c = path.correction(stress)).has_value();
+       ++corrections) {
+    substeps += rve.deform(*c);
+    state.F = *c * state.F;
+    stress = rve.stress();
+  }
+  state.corrections = corrections;
+  return substeps;
+}
+
+void ElementTest::load(const RunContext& context, rve::Rve& rve, StrainPath& path, Outputs& out,
+                       Loading& state) const {
+  int rank = 0;
+  MPI_Comm_rank(context.comm, &rank);
+  const int n = path.increments();
   for (int k = 0; k < n; ++k) {
-    if (stop_requested(context.comm))
-      throw StopRequested("stopped by a signal after increment " + std::to_string(k) + " of " +
-                          std::to_string(n) + ": " + dir.string() +
-                          "/history.csv holds increments 0 ... " + std::to_string(written) +
-                          ", no summary.json (an element test writes no checkpoints: run it "
-                          "again with --replace)");
-    const Mat3 dF = path->increment(k, now.stress);
-    int substeps = rve->deform(dF);
-    F = dF * F;
-    // Stress-controlled directions: correct within the increment until on target. Each
-    // correction takes the sub-steps the RVE's rule gives for its strain (the same inertial
-    // number as the increment): measured on the quickstart case, 1.8 corrections per increment
-    // cost 6 % more DEM steps; as many sub-steps as the increment itself needed 2.6
-    // corrections and 55 % more.
-    Mat3 stress = rve->stress();
-    int corrections = 0;
-    for (std::optional<Mat3> c;
-         corrections < test_.max_corrections && (c = path->correction(stress)).has_value();
-         ++corrections) {
-      substeps += rve->deform(*c);
-      F = *c * F;
-      stress = rve->stress();
-    }
-    time += substeps * rve_.time_step;
-    now = rve->observe();
+    stop_if_asked(context, k, n, state.written);
+    state.substeps = apply_increment(rve, path, k, state);
+    state.time += state.substeps * rve_.time_step;
+    state.now = rve.observe();
     if (test_.kind == TestKind::kDrainedCompression)
-      lateral.add(now.stress, corrections);
-    rve->check_health(now);
+      state.lateral.add(state.now.stress, state.corrections);
+    rve.check_health(state.now);
     const bool last = k + 1 == n;
     if ((k + 1) % test_.output_every == 0 || last) {
-      if (writer)
-        history->write(history_row(k + 1, time, F, now, rve_.dimension, substeps));
-      written = k + 1;
+      out.history(k + 1, state);
+      state.written = k + 1;
     }
-    if (rank == 0 && k + 1 == context.hooks.term_at_step)
-      std::raise(SIGTERM);  // as a signal arriving during that increment
+    context.hooks.at(TestHooks::Moment::step_recorded, k + 1, rank);
     if ((test_.snapshot_every > 0 && (k + 1) % test_.snapshot_every == 0) || last)
-      snapshot(k + 1);
-    const double phi = mobilised_friction_deg(now.stress, rve_.dimension);
-    if (phi > peak_friction) {
-      peak_friction = phi;
-      peak = state_json(now, rve_.dimension);
-      peak["increment"] = k + 1;
+      out.snapshot(k + 1);
+    const double phi = mobilised_friction_deg(state.now.stress, rve_.dimension);
+    if (phi > state.peak_friction) {
+      state.peak_friction = phi;
+      state.peak = state_json(state.now, rve_.dimension);
+      state.peak["increment"] = k + 1;
     }
   }
-  summary["increments"] = n;
+}
+
+void ElementTest::finish_summary(const RunContext& context, const rve::Rve& rve,
+                                 const Loading& state, double prepared_steps,
+                                 double preparation_seconds, nlohmann::json& summary) const {
   if (test_.kind == TestKind::kDrainedCompression)
-    summary["lateral_stress"] = lateral.json(test_.confining_tolerance);
-  summary["final"] = state_json(now, rve_.dimension);
-  summary["peak"] = peak;
-  summary["peak_mobilised_friction_deg"] = peak_friction;
-  double steps[2] = {rve->particle_steps() - prepared_steps, prepared_steps};
+    summary["lateral_stress"] = state.lateral.json(test_.confining_tolerance);
+  summary["final"] = state_json(state.now, rve_.dimension);
+  summary["peak"] = state.peak;
+  summary["peak_mobilised_friction_deg"] = state.peak_friction;
+  double steps[2] = {rve.particle_steps() - prepared_steps, prepared_steps};
   MPI_Allreduce(MPI_IN_PLACE, steps, 2, MPI_DOUBLE, MPI_MAX, context.comm);
   summary["dem_particle_steps"] = steps[0];
   if (summary.contains("preparation"))
     summary["preparation"]["dem_particle_steps"] = steps[1];
-  summary["wall_seconds"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   int ranks = 1;
   MPI_Comm_size(context.comm, &ranks);
   // As the MPM summary: cost tools count stepping time (wall minus preparation) per core.
   summary["ranks"] = ranks;
   summary["build"] = build_id();
   summary["time_split"] = {{"preparation", preparation_seconds}};
-  if (writer)
-    io::write_json((dir / "summary.json").string(), summary);
+}
+
+RunEnd ElementTest::run(const RunContext& context) {
+  const auto start = std::chrono::steady_clock::now();
+  nlohmann::json summary = describe();
+  auto rve = prepare(context, summary);
+  // The test's own DEM work: the preparation's is reported with it (as an MPM run counts only
+  // its main stage), so that cost models see the stepping alone.
+  const double prepared_steps = rve->particle_steps();
+  const double preparation_seconds = seconds_since(start);
+  const rve::Observables prepared = rve->observe();
+  rve->check_health(prepared);
+  const auto path = plan_strain_path(*rve, prepared, summary);
+  Loading state(prepared, confining_pressure(prepared), rve_.dimension);
+  Outputs out(context, *rve, rve_.dimension);
+  out.history(0, state);
+  out.snapshot(0);
+  load(context, *rve, *path, out, state);
+  summary["increments"] = path->increments();
+  finish_summary(context, *rve, state, prepared_steps, preparation_seconds, summary);
+  summary["wall_seconds"] = seconds_since(start);
+  int rank = 0;
+  MPI_Comm_rank(context.comm, &rank);
+  if (rank == 0)
+    io::write_json((std::filesystem::path(context.output_dir) / "summary.json").string(), summary);
   return RunEnd::completed;
 }
 

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -114,98 +113,152 @@ void prepare_materials(MpmProblem& problem, MPI_Comm comm, const std::string& wo
   problem.materials.prepare(problem.spec.material_ids, comm, work_dir, hooks);
 }
 
+namespace {
+
+int rank_of(MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return rank;
+}
+
+//! Whether this run writes checkpoints (and honours stop signals with one).
+bool writes_checkpoints(const RunOptions& options) {
+  return options.checkpoints && !options.run_dir.empty();
+}
+
+//! Where the main stage starts: from the run folder's last checkpoint (returning what the
+//! recorder saved there), or after the gravity stage of a new run (an earlier run's
+//! checkpoints in the folder removed first).
 template <int D>
-bool run_case(MpmProblem problem, const RunOptions& options,
-              const std::function<void(const Solver<D>&)>& observer) {
-  const auto start = std::chrono::steady_clock::now();
-  const MpmCase& c = problem.spec;
-  Solver<D> solver(c, std::move(problem.materials));
-  const bool checkpoints = options.checkpoints && !options.run_dir.empty();
-  RecorderState resumed;
-  if (checkpoints && !options.resume)
-    start_fresh_checkpoints(options.run_dir, options.comm);
+RecorderState start_main_stage(Solver<D>& solver, const MpmCase& c, const RunOptions& options) {
   if (options.resume) {
     remove_stale_checkpoints(options.run_dir, options.comm);
-    resumed = read_checkpoint<D>(c, solver, options.run_dir, options.comm);
-  } else if (c.gravity_stage_steps > 0) {
+    return read_checkpoint<D>(c, solver, options.run_dir, options.comm);
+  }
+  if (writes_checkpoints(options))
+    start_fresh_checkpoints(options.run_dir, options.comm);
+  if (c.gravity_stage_steps > 0)
     run_gravity_stage(solver, c, options.comm);
-  }
-  const std::string obstacle = checkpoint_obstacle(solver);
-  if (checkpoints) {
-    if (c.checkpoint_every > 0 && !obstacle.empty())
-      throw std::runtime_error("output.checkpoint_every: " + obstacle);
-  }
-  const long total = main_stage_steps(c, solver.dt());
+  return {};
+}
+
+//! Why no checkpoint can be written (empty: they can); a case asking for periodic
+//! checkpoints that cannot be written fails here, before the main stage.
+template <int D>
+std::string checkpoint_obstacle_of(const Solver<D>& solver, const MpmCase& c,
+                                   const RunOptions& options) {
+  std::string obstacle = checkpoint_obstacle(solver);
+  if (writes_checkpoints(options) && c.checkpoint_every > 0 && !obstacle.empty())
+    throw std::runtime_error("output.checkpoint_every: " + obstacle);
+  return obstacle;
+}
+
+//! The files a main stage writes step by step: the recorder's results and the RVE snapshots.
+template <int D>
+struct StageOutputs {
   std::unique_ptr<Recorder<D>> recorder;
-  if (options.write_results && !options.run_dir.empty()) {
-    recorder = std::make_unique<Recorder<D>>(c, solver, options.run_dir, total,
-                                             options.resume ? &resumed : nullptr);
-  }
   std::unique_ptr<RveSnapshots<D>> snapshots;
-  if (checkpoints && !c.rve_snapshots.at.empty()) {
-    snapshots = std::make_unique<RveSnapshots<D>>(c.rve_snapshots, solver, options.run_dir, total);
-    if (!options.resume)
-      snapshots->after_step(solver);
+
+  StageOutputs(const MpmCase& c, Solver<D>& solver, const RunOptions& options, long total,
+               const RecorderState& resumed) {
+    if (options.write_results && !options.run_dir.empty())
+      recorder = std::make_unique<Recorder<D>>(c, solver, options.run_dir, total,
+                                               options.resume ? &resumed : nullptr);
+    if (writes_checkpoints(options) && !c.rve_snapshots.at.empty()) {
+      snapshots =
+          std::make_unique<RveSnapshots<D>>(c.rve_snapshots, solver, options.run_dir, total);
+      if (!options.resume)
+        snapshots->after_step(solver);
+    }
   }
-  int rank = 0;
-  MPI_Comm_rank(options.comm, &rank);
-  while (solver.steps() < total) {
-    solver.step();
+
+  void after_step(Solver<D>& solver) {
     if (recorder)
       recorder->after_step(solver);
     if (snapshots)
       snapshots->after_step(solver);
-    if (observer)
-      observer(solver);
-    if (!checkpoints)
-      continue;
-    if (rank == 0 && solver.steps() == options.hooks.term_at_step)
-      std::raise(SIGTERM);  // as a signal arriving during that step
-    // A stop after the last step is not honoured: the run is complete, nothing to resume.
-    const bool stop = stop_requested(options.comm) && solver.steps() < total;
-    const bool due = c.checkpoint_every > 0 && solver.steps() % c.checkpoint_every == 0 &&
-                     solver.steps() < total;
-    if ((stop || due) && obstacle.empty()) {
-      const double t0 = MPI_Wtime();
-      write_checkpoint<D>(c, solver, recorder ? recorder->state() : RecorderState{},
-                          options.run_dir, options.comm);
-      if (rank == 0) {
-        std::printf("checkpoint at step %ld written in %.3f s\n", solver.steps(), MPI_Wtime() - t0);
-        std::fflush(stdout);
-      }
-    }
-    if (stop) {
-      if (rank == 0) {
-        if (obstacle.empty())
-          std::printf("stopped by a signal after step %ld: continue with --resume %s\n",
-                      solver.steps(), options.run_dir.c_str());
-        else
-          std::printf("stopped by a signal after step %ld, no checkpoint: %s\n", solver.steps(),
-                      obstacle.c_str());
-        std::fflush(stdout);
-      }
-      return false;
-    }
-    if (rank == 0 && solver.steps() == options.hooks.kill_at_step)
-      std::raise(SIGKILL);
   }
-  // Collective: every rank's DEM time, so the summary can show the load balance.
+};
+
+//! After a main-stage step of a run with checkpoints: writes one when due or when a stop
+//! signal arrived (and the materials allow it); true when the run must stop now. A stop after
+//! the last step is not honoured: the run is complete, nothing to resume.
+template <int D>
+bool checkpoint_or_stop(const MpmCase& c, Solver<D>& solver, const Recorder<D>* recorder,
+                        const RunOptions& options, long total, const std::string& obstacle) {
+  const int rank = rank_of(options.comm);
+  const bool stop = stop_requested(options.comm) && solver.steps() < total;
+  const bool due =
+      c.checkpoint_every > 0 && solver.steps() % c.checkpoint_every == 0 && solver.steps() < total;
+  if ((stop || due) && obstacle.empty()) {
+    const double t0 = MPI_Wtime();
+    write_checkpoint<D>(c, solver, recorder ? recorder->state() : RecorderState{}, options.run_dir,
+                        options.comm);
+    if (rank == 0) {
+      std::printf("checkpoint at step %ld written in %.3f s\n", solver.steps(), MPI_Wtime() - t0);
+      std::fflush(stdout);
+    }
+  }
+  if (stop && rank == 0) {
+    if (obstacle.empty())
+      std::printf("stopped by a signal after step %ld: continue with --resume %s\n", solver.steps(),
+                  options.run_dir.c_str());
+    else
+      std::printf("stopped by a signal after step %ld, no checkpoint: %s\n", solver.steps(),
+                  obstacle.c_str());
+    std::fflush(stdout);
+  }
+  return stop;
+}
+
+//! Collective: the run's summary (every rank's DEM time gathered for the load balance).
+template <int D>
+void finish_run(const Solver<D>& solver, Recorder<D>* recorder, const MpmCase& c,
+                const RunOptions& options, std::chrono::steady_clock::time_point start) {
   const double dem_seconds = total_cost(solver.materials()).compute_seconds;
   int comm_size = 1;
   MPI_Comm_size(options.comm, &comm_size);
   std::vector<double> dem_seconds_per_rank(comm_size);
   MPI_Gather(&dem_seconds, 1, MPI_DOUBLE, dem_seconds_per_rank.data(), 1, MPI_DOUBLE, 0,
              options.comm);
-  if (recorder) {
-    RunTotals totals;
-    totals.dem_seconds_per_rank = dem_seconds_per_rank;
-    totals.gravity_stage_steps = c.gravity_stage_steps;
-    totals.ranks = options.ranks;
-    totals.wall_seconds =
-        options.prior_seconds +
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    recorder->finish(solver, totals);
+  if (!recorder)
+    return;
+  RunTotals totals;
+  totals.dem_seconds_per_rank = dem_seconds_per_rank;
+  totals.gravity_stage_steps = c.gravity_stage_steps;
+  totals.ranks = options.ranks;
+  totals.wall_seconds =
+      options.prior_seconds +
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  recorder->finish(solver, totals);
+}
+
+}  // namespace
+
+template <int D>
+bool run_case(MpmProblem problem, const RunOptions& options,
+              const std::function<void(const Solver<D>&)>& observer) {
+  const auto start = std::chrono::steady_clock::now();
+  const MpmCase& c = problem.spec;
+  Solver<D> solver(c, std::move(problem.materials));
+  const RecorderState resumed = start_main_stage(solver, c, options);
+  const std::string obstacle = checkpoint_obstacle_of(solver, c, options);
+  const long total = main_stage_steps(c, solver.dt());
+  StageOutputs<D> outputs(c, solver, options, total, resumed);
+  const int rank = rank_of(options.comm);
+  while (solver.steps() < total) {
+    solver.step();
+    outputs.after_step(solver);
+    if (observer)
+      observer(solver);
+    if (!writes_checkpoints(options))
+      continue;
+    options.hooks.at(TestHooks::Moment::step_recorded, solver.steps(), rank);
+    if (checkpoint_or_stop(c, solver, outputs.recorder.get(), options, total, obstacle))
+      return false;
+    options.hooks.at(TestHooks::Moment::step_finished, solver.steps(), rank);
   }
+  finish_run(solver, outputs.recorder.get(), c, options, start);
   return true;
 }
 

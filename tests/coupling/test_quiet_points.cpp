@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <string>
 
 #include "coupling/quiet_points.h"
 
@@ -214,11 +216,10 @@ TEST(QuietPoints, CheckpointRowContinuesIdentically) {
   };
   for (int k = 0; k < 17; ++k)
     drive(a, k);
-  double row[QuietPoints::kValues], stats[QuietPoints::kStatValues];
+  double row[QuietPoints::kValues];
   a.save_row(0, row);
-  a.save_stats(stats);
   b.restore_row(0, row);
-  b.restore_stats(stats);
+  b.restore_stats(a.stats());
   for (int k = 17; k < 40; ++k) {
     drive(a, k);
     drive(b, k);
@@ -337,13 +338,12 @@ TEST(ContinuumStart, CheckpointRowKeepsWhetherAPointSwitched) {
     if (a.accumulate(0, step(1e-4)))
       a.after_dem(0, a.predicted(0));
   a.accumulate(1, step(1e-4));
-  double row[QuietPoints::kValues], stats[QuietPoints::kStatValues];
+  double row[QuietPoints::kValues];
   for (std::size_t p = 0; p < 2; ++p) {
     a.save_row(p, row);
     b.restore_row(p, row);
   }
-  a.save_stats(stats);
-  b.restore_stats(stats);
+  b.restore_stats(a.stats());
   EXPECT_FALSE(b.is_continuum(0));
   EXPECT_TRUE(b.is_continuum(1));
   EXPECT_EQ(b.stats().switches, 1.0);
@@ -369,6 +369,21 @@ TEST(ContinuumStart, FrictionThresholdIn3D) {
   EXPECT_NEAR(updates + 1, expected, 1.0);
   const Mat3 s = q.predicted(0);
   EXPECT_GE((s(0, 0) - s(2, 2)) / -(s(0, 0) + s(2, 2)), std::sin(5.0 * kPi / 180.0));
+}
+
+// Each statistic has its own checkpoint name and field: a name saved twice or a field restored
+// from another's name would mix the statistics of a resumed run.
+TEST(QuietPoints, EveryStatisticHasItsOwnCheckpointName) {
+  std::set<std::string> names;
+  for (const QuietStatField& f : kQuietStatFields) {
+    EXPECT_TRUE(names.insert(f.name).second) << f.name;
+    QuietStats s;
+    s.*f.value = -7.0;
+    int changed = 0;
+    for (const QuietStatField& g : kQuietStatFields)
+      changed += (s.*g.value == -7.0);
+    EXPECT_EQ(changed, 1) << f.name;
+  }
 }
 
 }  // namespace
