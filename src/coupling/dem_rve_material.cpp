@@ -13,6 +13,7 @@
 #include "coupling/point_checkpoint.h"
 #include "coupling/rve_migration.h"
 #include "dem/file_name.h"
+#include "io/atomic_file.h"
 #include "rve/consolidation.h"
 #include "rve/observables.h"
 #include "rve/snapshot.h"
@@ -210,13 +211,15 @@ Packing DemRveMaterial::prepare_packing(std::size_t k, const std::string& file,
                [&] { rve::require_void_ratio(*rve, rve::consolidate(*rve)); });
     // Saved under a temporary name first: a packing file is complete or absent, whatever
     // stops the run while it is written.
-    const std::string partial = file + ".partial";
+    // The engine writes it collectively, so the rename is io::replace_atomically's second
+    // half, done once by the group's rank 0.
+    const std::string partial = io::temporary_beside(file, ".partial");
     or_end_job(label + " not saved", [&] {
       rve->write_restart(partial);
       int group_rank = 0;
       MPI_Comm_rank(group_comm, &group_rank);
       if (group_rank == 0)
-        std::filesystem::rename(partial, file);
+        io::rename_over(partial, file);
       MPI_Barrier(group_comm);
     });
   } else {
