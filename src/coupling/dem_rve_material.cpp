@@ -39,7 +39,8 @@ void probe_moduli(rve::Rve& rve, Packing& packing) {
   packing.lateral_modulus = -change(1, 1) / kProbeStrain;
 }
 
-std::vector<double> describe(const Packing& p) {
+//! The kPackingValues numbers of `p` the rank groups exchange (packing_from reads them back).
+std::vector<double> packing_values(const Packing& p) {
   std::vector<double> v(p.stress.data(), p.stress.data() + 9);
   v.push_back(p.void_ratio);
   v.push_back(p.wave_modulus);
@@ -168,7 +169,8 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   bool stopped = false;
   for (const std::size_t k : layout.owned()) {
     try {
-      const std::vector<double> v = describe(prepare_packing(k, files[k], layout.group_comm()));
+      const std::vector<double> v =
+          packing_values(prepare_packing(k, files[k], layout.group_comm()));
       owned.insert(owned.end(), v.begin(), v.end());
       ++saved;
     } catch (const StopRequested&) {
