@@ -2,9 +2,9 @@
 
 #include <mpi.h>
 
+#include "mpm/case_size.h"
 #include "mpm/case_spec.h"
 #include "mpm/driver.h"
-#include "mpm/resources.h"
 #include "mpm/resume_check.h"
 
 namespace mpm_lig::mpm {
