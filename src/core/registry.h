@@ -11,9 +11,9 @@
 
 namespace mpm_lig {
 
-//! Named variants chosen by a string in the case file (materials, shape functions,
-//! analyses, engines). Each family registers its members in one .cpp file; an unknown
-//! name is a CaseError that lists the known ones.
+//! Named variants chosen by a string in the case file: materials, shape functions, analyses
+//! (DEM engines are modules loaded by dlopen: dem::create_engine). Each family registers its
+//! members in one .cpp file; an unknown name is a CaseError that lists the known ones.
 template <class Product, class... Args>
 class Registry {
  public:

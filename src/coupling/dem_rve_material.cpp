@@ -12,6 +12,7 @@
 #include "coupling/point_checkpoint.h"
 #include "coupling/rve_migration.h"
 #include "dem/file_name.h"
+#include "io/atomic_file.h"
 #include "rve/consolidation.h"
 #include "rve/observables.h"
 #include "rve/snapshot.h"
@@ -37,7 +38,8 @@ void probe_moduli(rve::Rve& rve, Packing& packing) {
   packing.lateral_modulus = -change(1, 1) / kProbeStrain;
 }
 
-std::vector<double> describe(const Packing& p) {
+//! The kPackingValues numbers of `p` the rank groups exchange (packing_from reads them back).
+std::vector<double> packing_values(const Packing& p) {
   std::vector<double> v(p.stress.data(), p.stress.data() + 9);
   v.push_back(p.void_ratio);
   v.push_back(p.wave_modulus);
@@ -166,7 +168,8 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   bool stopped = false;
   for (const std::size_t k : layout.owned()) {
     try {
-      const std::vector<double> v = describe(prepare_packing(k, files[k], layout.group_comm()));
+      const std::vector<double> v =
+          packing_values(prepare_packing(k, files[k], layout.group_comm()));
       owned.insert(owned.end(), v.begin(), v.end());
       ++saved;
     } catch (const StopRequested&) {
@@ -208,13 +211,15 @@ Packing DemRveMaterial::prepare_packing(std::size_t k, const std::string& file,
                [&] { rve::require_void_ratio(*rve, rve::consolidate(*rve)); });
     // Saved under a temporary name first: a packing file is complete or absent, whatever
     // stops the run while it is written.
-    const std::string partial = file + ".partial";
+    // The engine writes it collectively, so the rename is io::replace_atomically's second
+    // half, done once by the group's rank 0.
+    const std::string partial = io::temporary_beside(file, ".partial");
     or_end_job(label + " not saved", [&] {
       rve->write_restart(partial);
       int group_rank = 0;
       MPI_Comm_rank(group_comm, &group_rank);
       if (group_rank == 0)
-        std::filesystem::rename(partial, file);
+        io::rename_over(partial, file);
       MPI_Barrier(group_comm);
     });
   } else {

@@ -1,6 +1,6 @@
 #include "element/register.h"
 
-#include "element/element_test.h"
+#include "element/element_analysis.h"
 
 namespace mpm_lig::element {
 

@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "core/tensor.h"
-#include "element/element_test.h"
+#include "element/element_analysis.h"
 
 namespace mpm_lig::element {
 

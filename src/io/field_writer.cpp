@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "io/atomic_file.h"
 #include "io/checkpoint_file.h"
 #include "io/field_index.h"
 #include "io/hdf5_handle.h"
@@ -85,16 +86,16 @@ std::unique_ptr<FieldWriter> FieldWriter::resume(const std::string& directory,
     return std::make_unique<FieldWriter>(directory, basename);
   // The steps to keep are copied beside the file, checked, and only then renamed over it: a
   // failure at any point (full disk, kill) leaves the earlier file whole for the next try.
-  const std::filesystem::path kept = earlier.string() + ".resume_tmp";
   std::vector<XdmfStep> steps;
   try {
-    copy_steps_up_to(earlier.string(), kept.string(), last_step);
-    steps = read_field_steps(kept.string());
-    std::filesystem::rename(kept, earlier);
+    replace_atomically(
+        earlier.string(),
+        [&](const std::string& kept) {
+          copy_steps_up_to(earlier.string(), kept, last_step);
+          steps = read_field_steps(kept);
+        },
+        ".resume_tmp");
   } catch (const std::exception& e) {
-    std::error_code ignored;
-    if (!std::filesystem::is_directory(kept))
-      std::filesystem::remove(kept, ignored);
     throw std::runtime_error("cannot continue '" + earlier.string() +
                              "' (left unchanged): " + e.what());
   }

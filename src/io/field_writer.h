@@ -61,8 +61,6 @@ class FieldWriter {
   //! Close the step: the HDF5 file is closed (so flushed) and the XDMF file rewritten.
   void end_step();
 
-  const std::string& h5_filename() const { return h5_path_; }
-  const std::string& xdmf_filename() const { return xdmf_path_; }
   //! Number of steps completed by `end_step`.
   std::size_t steps_written() const { return steps_.size(); }
 

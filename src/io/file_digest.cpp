@@ -11,6 +11,8 @@
 
 #include <openssl/evp.h>
 
+#include "io/atomic_file.h"
+
 namespace mpm_lig::io {
 namespace {
 
@@ -62,15 +64,11 @@ std::string sha256_of_file(const std::string& file) {
 
 void write_manifest(const std::string& folder, const std::string& manifest_name) {
   const fs::path target = fs::path(folder) / manifest_name;
-  const fs::path temporary = target.string() + ".tmp";
   const auto listed = digests(folder, manifest_name);
-  std::ofstream out(temporary);
-  for (const auto& [file, digest] : listed)
-    out << digest << "  " << file << '\n';
-  out.close();
-  if (!out)
-    throw std::runtime_error("cannot write '" + temporary.string() + "'");
-  fs::rename(temporary, target);
+  replace_file(target.string(), [&](std::ostream& out) {
+    for (const auto& [file, digest] : listed)
+      out << digest << "  " << file << '\n';
+  });
 }
 
 std::string manifest_problem(const std::string& folder, const std::string& manifest_name) {

@@ -1,12 +1,7 @@
 #include "io/xdmf_index.h"
 
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
-#include <stdexcept>
-
-#include "io/checked_stream.h"
 
 namespace mpm_lig::io {
 namespace {
@@ -126,19 +121,6 @@ std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfStep>& s
       << "  </Domain>\n"
       << "</Xdmf>\n";
   return out.str();
-}
-
-void replace_file(const std::string& filename, const std::string& text) {
-  const std::string temporary = filename + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::trunc);
-    out << text;
-    close_checked(out, temporary);
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, filename, error);
-  if (error)
-    throw std::runtime_error("cannot replace '" + filename + "': " + error.message());
 }
 
 }  // namespace mpm_lig::io

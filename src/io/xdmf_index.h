@@ -26,8 +26,4 @@ struct XdmfStep {
 //! (a path relative to the XDMF file), one grid per step.
 std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfStep>& steps);
 
-//! Write `text` to `filename` through a temporary file and a rename, so that a reader
-//! (or a killed run) never sees a half-written file.
-void replace_file(const std::string& filename, const std::string& text);
-
 }  // namespace mpm_lig::io

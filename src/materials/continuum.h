@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "materials/elasticity.h"
-#include "materials/kinematics.h"
 #include "materials/material.h"
+#include "materials/strain_increment.h"
 
 namespace mpm_lig::materials {
 

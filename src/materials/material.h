@@ -71,8 +71,8 @@ struct MaterialCost {
   double communication_seconds = 0.0;  //!< this rank's time exchanging stresses (waits included)
   double preparation_seconds = 0.0;    //!< prepare(): packings made or loaded
   double particle_steps_at_max = 0.0;  //!< of particle_steps: updates at substeps.max
-  double particle_steps_low_stress = 0.0;  //!< in packings below 10 % of the preparation p
-  double particle_steps_quiet = 0.0;       //!< in updates with |dF - 1| < 1e-5
+  double particle_steps_low_stress = 0.0;  //!< in packings at low stress (coupling::DemWork)
+  double particle_steps_quiet = 0.0;       //!< in quiet updates, dF near 1 (coupling::DemWork)
   PredictionCost quiet;
   ContinuumStartCost continuum_start;
   SteppingCost stepping;

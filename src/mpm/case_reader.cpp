@@ -4,8 +4,8 @@
 #include <set>
 #include <sstream>
 
+#include "mpm/case_size.h"
 #include "mpm/case_spec.h"
-#include "mpm/resources.h"
 #include "mpm/shape_function.h"
 
 namespace mpm_lig::mpm {

@@ -6,6 +6,7 @@
 
 #include "core/build_id.h"
 #include "core/mpi_session.h"
+#include "io/atomic_file.h"
 #include "io/checkpoint_file.h"
 #include "io/file_digest.h"
 #include "mpm/checkpoint_folder.h"
@@ -133,14 +134,7 @@ void commit(const std::string& run_dir, const std::string& name) {
   const std::string root = CheckpointFolder::root(run_dir);
   io::write_manifest(root + "/" + name, CheckpointFolder::kManifest);
   const std::string previous = CheckpointFolder::latest_name_or_empty(run_dir);
-  {
-    std::ofstream out(root + "/latest.tmp");
-    out << name << '\n';
-    out.close();
-    if (!out)
-      throw std::runtime_error("cannot write '" + root + "/latest.tmp'");
-  }
-  fs::rename(root + "/latest.tmp", root + "/latest");
+  io::replace_file(root + "/latest", name + '\n');
   if (!previous.empty() && previous != name)
     fs::remove_all(root + "/" + previous);
 }

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "mpm/resources.h"
+#include "mpm/case_size.h"
 
 namespace mpm_lig::mpm {
 namespace {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/build_id.h"
+#include "io/atomic_file.h"
 #include "io/summary.h"
 
 namespace mpm_lig::mpm {
@@ -34,16 +35,17 @@ void truncate_rows(const std::string& filename, long rows) {
   in.close();
   if (lines != rows + 1)
     throw std::runtime_error("'" + filename + "' holds fewer rows than the checkpoint");
-  const std::string cut = filename + ".resume_tmp";
-  std::ofstream out(cut, std::ios::trunc);
-  out << kept;
-  out.close();
-  std::error_code error;
-  if (!out || std::filesystem::file_size(cut, error) != kept.size()) {
-    std::filesystem::remove(cut, error);
-    throw std::runtime_error("cannot write '" + cut + "' ('" + filename + "' is unchanged)");
-  }
-  std::filesystem::rename(cut, filename);
+  io::replace_atomically(
+      filename,
+      [&](const std::string& cut) {
+        std::ofstream out(cut, std::ios::trunc);
+        out << kept;
+        out.close();
+        std::error_code error;
+        if (!out || std::filesystem::file_size(cut, error) != kept.size())
+          throw std::runtime_error("cannot write '" + cut + "' ('" + filename + "' is unchanged)");
+      },
+      ".resume_tmp");
 }
 
 //! DIR/history.csv, cut to the checkpoint's rows for a resumed run.

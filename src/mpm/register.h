@@ -1,7 +1,5 @@
 #pragma once
 
-#include <memory>
-
 #include "core/analysis.h"
 #include "materials/material.h"
 
@@ -10,9 +8,5 @@ namespace mpm_lig::mpm {
 //! Adds the MPM analyses ("mpm") to `registry`; their materials come from `materials`
 //! (assembled by the program: the continuum laws and, with a DEM engine, "dem_rve").
 void register_analyses(AnalysisRegistry& registry, materials::MaterialRegistry materials);
-
-//! The "mpm" analysis for `root`, its materials taken from `materials` (tests add their own).
-std::unique_ptr<Analysis> make_analysis(const CaseNode& root,
-                                        const materials::MaterialRegistry& materials);
 
 }  // namespace mpm_lig::mpm

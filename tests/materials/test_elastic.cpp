@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "driver.h"
-#include "materials/kinematics.h"
 #include "materials/linear_elastic.h"
+#include "materials/strain_increment.h"
 
 namespace mpm_lig::materials {
 namespace {

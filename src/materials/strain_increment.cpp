@@ -1,4 +1,4 @@
-#include "materials/kinematics.h"
+#include "materials/strain_increment.h"
 
 #include <cmath>
 #include <stdexcept>

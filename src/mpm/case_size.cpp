@@ -1,4 +1,4 @@
-#include "mpm/resources.h"
+#include "mpm/case_size.h"
 
 #include <algorithm>
 #include <cmath>

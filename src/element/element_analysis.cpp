@@ -1,4 +1,4 @@
-#include "element/element_test.h"
+#include "element/element_analysis.h"
 
 #include <chrono>
 #include <cmath>
