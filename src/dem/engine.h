@@ -34,6 +34,12 @@ struct Contact {
   Vec3 force;               //!< force on i from j (normal + tangential)
 };
 
+//! Two grains whose centres are closer than the sum of their radii.
+struct Overlap {
+  long id_i = 0, id_j = 0;  //!< grain ids
+  double ratio = 0.0;       //!< overlap / radius of the smaller grain
+};
+
 //! Options for one engine instance.
 struct EngineOptions {
   std::string label;     //!< who owns the instance, for error reports ("RVE 17")
@@ -78,6 +84,11 @@ class Engine {
   //! velocities in its damping terms: after a `run 0` both agree to round-off. Needs a run
   //! since the pair style was defined.
   virtual std::vector<Contact> contacts() = 0;
+  //! The overlapping pairs (a pair may appear twice), from the pair style's neighbour list as
+  //! the last run left it: no force is evaluated, so it costs a small part of contacts(). The
+  //! distance is the minimum image in the current box, as in contacts(). Needs a run since
+  //! the pair style was defined.
+  virtual std::vector<Overlap> overlaps() = 0;
 
   //! The last lines the engine printed (kept in memory even when its screen is off).
   virtual std::string recent_output() const = 0;

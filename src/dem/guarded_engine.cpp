@@ -125,6 +125,11 @@ std::vector<Contact> GuardedEngine::contacts() {
   return impl_->contacts();
 }
 
+std::vector<Overlap> GuardedEngine::overlaps() {
+  Scope scope(this);
+  return impl_->overlaps();
+}
+
 long GuardedEngine::ghost_count() const {
   Scope scope(this);
   return impl_->ghost_count();

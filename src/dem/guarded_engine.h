@@ -36,6 +36,7 @@ class GuardedEngine final : public Engine {
   void scatter_atom_ints(const std::string& name, int count,
                          const std::vector<int>& values) override;
   std::vector<Contact> contacts() override;
+  std::vector<Overlap> overlaps() override;
   std::string recent_output() const override;
 
   //! Ghost atoms on this rank (tests: health of periodic boxes).

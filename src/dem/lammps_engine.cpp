@@ -10,6 +10,7 @@
 #include "library.h"
 
 #include "dem/library_engine.h"
+#include "dem/neighbour_overlaps.h"
 
 namespace mpm_lig::dem::detail {
 namespace {
@@ -46,6 +47,9 @@ class LammpsEngine final : public LibraryEngine {
   long atom_count() const override { return std::lround(lammps_get_natoms(handle())); }
 
   std::vector<Contact> contacts() override;
+  std::vector<Overlap> overlaps() override;
+  //! `run 0 post no` unless the last run was one (contacts()).
+  void set_up_after_run();
 
  private:
   void define_contact_computes();
@@ -68,17 +72,21 @@ void LammpsEngine::define_contact_computes() {
   computes_defined_ = true;
 }
 
+void LammpsEngine::set_up_after_run() {
+  if (!computes_defined_)
+    define_contact_computes();
+  else if (runs() != runs_at_setup_)
+    command("run 0 post no");
+  runs_at_setup_ = runs();
+}
+
 std::vector<Contact> LammpsEngine::contacts() {
   // A set-up after every run: the computes' occasional neighbour list is otherwise not rebuilt,
   // and pair granular's single() then meets atom indices beyond the current ghosts ("Not enough
   // atoms for pair granular single function", seen after ~50 MPM updates). Not after a set-up
   // of its own, so that reading the contacts twice (a snapshot after the health check) changes
   // nothing.
-  if (!computes_defined_)
-    define_contact_computes();
-  else if (runs() != runs_at_setup_)
-    command("run 0 post no");
-  runs_at_setup_ = runs();
+  set_up_after_run();
   lammps_extract_compute(handle(), const_cast<char*>(kContactForces), 2, 2);
   lammps_extract_compute(handle(), const_cast<char*>(kContactIds), 2, 2);
   const int local_rows =
@@ -112,6 +120,23 @@ std::vector<Contact> LammpsEngine::contacts() {
       result.push_back(c);
   }
   return result;
+}
+
+// The same set-up as contacts(): an MPM update's run is followed by one either way, so that
+// the results do not depend on which of the two reads the packing.
+std::vector<Overlap> LammpsEngine::overlaps() {
+  set_up_after_run();
+  const int list = lammps_find_pair_neighlist(handle(), "granular", 1, 0, 0);
+  if (list < 0)
+    throw std::runtime_error("lammps overlaps: no pair neighbour list (no run yet?)");
+  const auto element = [&](int ii, int& i, int& count, int*& neighbours) {
+    lammps_neighlist_element_neighbors(handle(), list, ii, &i, &count, &neighbours);
+  };
+  auto* x = static_cast<double**>(lammps_extract_atom(handle(), "x"));
+  auto* radius = static_cast<double*>(lammps_extract_atom(handle(), "radius"));
+  auto* id = static_cast<LAMMPS_NS::tagint*>(lammps_extract_atom(handle(), "id"));
+  return overlaps_of(
+      near_pair_rows(lammps_neighlist_num_elements(handle(), list), element, x, radius, id));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "dem/library_engine.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -104,6 +105,10 @@ std::vector<double> LibraryEngine::gather_local_array(const std::string& compute
   for (int r = 0; r < local_rows; ++r)
     for (int c = 0; c < columns; ++c)
       mine[static_cast<std::size_t>(r) * columns + c] = rows[r][c];
+  return gather_rows(mine);
+}
+
+std::vector<double> LibraryEngine::gather_rows(const std::vector<double>& mine) {
   int ranks = 1;
   MPI_Comm_size(comm_, &ranks);
   const int my_count = static_cast<int>(mine.size());
@@ -115,6 +120,22 @@ std::vector<double> LibraryEngine::gather_local_array(const std::string& compute
   MPI_Allgatherv(mine.data(), my_count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
                  MPI_DOUBLE, comm_);
   return all;
+}
+
+std::vector<Overlap> LibraryEngine::overlaps_of(const std::vector<double>& near_pair_rows) {
+  constexpr int kColumns = 4;  // id_i, id_j, radius_i, radius_j
+  const std::vector<double> rows = gather_rows(near_pair_rows);
+  const std::vector<Vec3> x = positions_by_id();
+  const Mat3 h = box().h();
+  std::vector<Overlap> result;
+  for (std::size_t k = 0; k + kColumns <= rows.size(); k += kColumns) {
+    const double* row = &rows[k];
+    const long i = static_cast<long>(row[0]), j = static_cast<long>(row[1]);
+    const double overlap = row[2] + row[3] - minimum_image(x[j - 1] - x[i - 1], h).norm();
+    if (overlap > 0.0)
+      result.push_back({i, j, overlap / std::min(row[2], row[3])});
+  }
+  return result;
 }
 
 std::vector<Vec3> LibraryEngine::positions_by_id() {

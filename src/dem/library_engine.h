@@ -44,6 +44,10 @@ class LibraryEngine : public ModuleEngine {
   //! A local array (rows × columns) of a compute, gathered over the instance's ranks.
   std::vector<double> gather_local_array(const std::string& compute_id, int local_rows,
                                          int columns);
+  //! `mine` (rows of any width) from every rank of the instance, rank by rank.
+  std::vector<double> gather_rows(const std::vector<double>& mine);
+  //! overlaps() from near_pair_rows (neighbour_overlaps.h) of every rank.
+  std::vector<Overlap> overlaps_of(const std::vector<double>& near_pair_rows);
   //! Throws unless `size` = atoms × `count`.
   void check_atom_values(std::size_t size, int count, const std::string& name) const;
   //! `run` commands issued so far (set-ups included).

@@ -3,17 +3,23 @@
 #include <mpi.h>
 
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "atom.h"
 #include "compute.h"
 #include "domain.h"
+#include "force.h"
 #include "lammps.h"
 #include "library.h"
 #include "modify.h"
+#include "neigh_list.h"
+#include "pair.h"
 #include "update.h"
 
 #include "dem/library_engine.h"
+#include "dem/neighbour_overlaps.h"
 
 namespace mpm_lig::dem::detail {
 namespace {
@@ -52,6 +58,7 @@ class LiggghtsEngine final : public LibraryEngine {
   long atom_count() const override { return lammps_get_natoms(handle()); }
 
   std::vector<Contact> contacts() override;
+  std::vector<Overlap> overlaps() override;
 
  private:
   // LIGGGHTS 3.8's Domain constructor leaves prd_lamda and prd_half_lamda at 0 (LAMMPS sets
@@ -107,6 +114,19 @@ std::vector<Contact> LiggghtsEngine::contacts() {
     c.branch = minimum_image(x[c.id_j - 1] - x[c.id_i - 1], h);
   }
   return result;
+}
+
+std::vector<Overlap> LiggghtsEngine::overlaps() {
+  LAMMPS_NS::NeighList* list = lmp_->force->pair ? lmp_->force->pair->list : nullptr;
+  if (!list)
+    throw std::runtime_error("liggghts overlaps: no pair neighbour list (no run yet?)");
+  const auto element = [&](int ii, int& i, int& count, int*& neighbours) {
+    i = list->ilist[ii];
+    count = list->numneigh[i];
+    neighbours = list->firstneigh[i];
+  };
+  const LAMMPS_NS::Atom& atom = *lmp_->atom;
+  return overlaps_of(near_pair_rows(list->inum, element, atom.x, atom.radius, atom.tag));
 }
 
 }  // namespace

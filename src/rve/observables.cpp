@@ -71,6 +71,23 @@ void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact
   if (out.contacts > 0)
     out.mean_overlap_strain /= static_cast<double>(out.contacts);
   out.coordination_number = out.grains > 0 ? 2.0 * out.contacts / out.grains : 0.0;
+  add_motion_measures(grains, loaded, streaming, origin, out);
+}
+
+void add_health_measures(const GrainState& grains, const std::vector<dem::Overlap>& overlaps,
+                         const Mat3& streaming, const Vec3& origin, Observables& out) {
+  out.grains = static_cast<long>(grains.x.size());
+  out.max_overlap_ratio = 0.0;
+  std::vector<char> loaded(grains.x.size(), 0);
+  for (const auto& o : overlaps) {
+    loaded[o.id_i - 1] = loaded[o.id_j - 1] = 1;  // ids start at 1
+    out.max_overlap_ratio = std::max(out.max_overlap_ratio, o.ratio);
+  }
+  add_motion_measures(grains, loaded, streaming, origin, out);
+}
+
+void add_motion_measures(const GrainState& grains, const std::vector<char>& loaded,
+                         const Mat3& streaming, const Vec3& origin, Observables& out) {
   // Fluctuations about the affine field and about the mean motion (a uniform drift of a
   // periodic packing is no deformation).
   std::vector<Vec3> fluctuation(grains.x.size());

@@ -52,4 +52,15 @@ Mat3 contact_stress(const std::vector<dem::Contact>& contacts, double volume);
 void add_grain_measures(const GrainState& grains, const std::vector<dem::Contact>& contacts,
                         const Mat3& streaming, const Vec3& origin, Observables& out);
 
+//! What check_blow_up reads, from the overlapping pairs instead of the contacts: grains,
+//! largest overlap and the motion measures (a grain is loaded when it overlaps another, as a
+//! contact with a normal force). Contacts, coordination and the contact energies stay 0.
+void add_health_measures(const GrainState& grains, const std::vector<dem::Overlap>& overlaps,
+                         const Mat3& streaming, const Vec3& origin, Observables& out);
+
+//! Kinetic, flow energy and largest speed; `loaded[i]` marks grain i as in contact (only those
+//! count in the kinetic energy).
+void add_motion_measures(const GrainState& grains, const std::vector<char>& loaded,
+                         const Mat3& streaming, const Vec3& origin, Observables& out);
+
 }  // namespace mpm_lig::rve

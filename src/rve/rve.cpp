@@ -112,10 +112,23 @@ Observables Rve::observe() {
   const GrainState grains = gather_grains(*engine_);
   const std::vector<dem::Contact> contacts = engine_->contacts();
   add_grain_measures(grains, contacts, streaming_, engine_->box().lo, o);
+  add_cell_measures(grains, o);
+  return o;
+}
+
+Observables Rve::observe_health() {
+  Observables o;
+  o.stress = stress();
+  const GrainState grains = gather_grains(*engine_);
+  add_health_measures(grains, engine_->overlaps(), streaming_, engine_->box().lo, o);
+  add_cell_measures(grains, o);
+  return o;
+}
+
+void Rve::add_cell_measures(const GrainState& grains, Observables& o) const {
   const double solid = solid_measure(grains.radius, spec_.dimension);
   o.void_ratio = cell_measure(box_matrix(), spec_.dimension) / solid - 1.0;
   o.step_travel = o.max_speed_ratio * spec_.time_step;
-  return o;
 }
 
 void Rve::check_blow_up(const Observables& now) const {

@@ -149,6 +149,17 @@ TEST_F(RveTest, PressureFloorBoundsSubsteps) {
   EXPECT_NEAR(n_floored, std::ceil(n_plain / 10.0), 1.0) << n_plain << " vs " << n_floored;
 }
 
+// Right after a run under `fix deform` (what an MPM update reads), with a reduced cell basis.
+TEST_F(RveTest, HealthObservationMatchesTheFullOneAfterDeforming) {
+  auto r = clone();
+  Mat3 dF = Mat3::Identity();
+  dF(0, 1) = 0.05;
+  dF(0, 0) = 1.0 - 2e-3;
+  for (int k = 0; k < 12; ++k)
+    r->deform(dF, 40);
+  test::expect_health_matches_full(*r, 0.01);  // 1.25e-3 shear per step, cells ~10 radii
+}
+
 TEST_F(RveTest, StressEqualsContactSumAfterDeformation) {
   auto r = clone();
   Mat3 dF = Mat3::Identity();

@@ -69,4 +69,5 @@ TEST(RveLammps, ConsolidatesIn2dAndReadsContactsRightAfterDeforming) {
   // step's change (damping velocities, one step of deformation).
   const Mat3 from_contacts = rve::contact_stress(r->engine().contacts(), r->volume());
   EXPECT_LT((from_contacts - r->stress()).norm(), 0.01 * p);
+  test::expect_health_matches_full(*r, 0.0);  // after contacts()' set-up: no lag
 }
