@@ -5,7 +5,7 @@ usage: compare_outputs.py REFERENCE_DIR OTHER_DIR... [--allow-added] [--results-
 
 Each OTHER_DIR against REFERENCE_DIR: history.csv byte for byte; results.h5 (when present)
 every dataset and attribute; summary.json every value except timings (keys with 'seconds',
-'time_split', 'per_s' or 'rate' in their path) and the build's identity. Prints what differs
+'time_split', 'per_s', 'rate', 'balance' or 'waiting' in their path) and the build's identity. Prints what differs
 and exits 1, or prints "bit-identical: ..." and exits 0. With --allow-added, outputs the
 reference lacks (new history columns, datasets, summary keys) are listed but pass: every value
 the two share must still be bit-identical (a new build that writes more against an older one).
@@ -31,7 +31,7 @@ from mpm_lig_post.fields import every_item  # noqa: E402
 from mpm_lig_post.tables import read_json, read_text  # noqa: E402
 
 # Keys that say how and where a run was computed, not what: timings and the build's identity.
-TIMING_MARKS = ("seconds", "time_split", "per_s", "rate", "balance", "build")
+TIMING_MARKS = ("seconds", "time_split", "per_s", "rate", "balance", "build", "waiting")
 
 
 def flatten(node, prefix=""):
