@@ -35,8 +35,9 @@ struct BalancePlan {
 //! cost is closest to half their difference (fewest moves from the busiest groups), kept up to
 //! the prefix whose gain `horizon` × (makespan reduction) exceeds the time of its moves by the
 //! most. The moves run in parallel: their time is `move_cost` × the most moves into or out of
-//! one group, so relieving many busy groups at once costs about as much as relieving one. No moves when the imbalance max/mean - 1 is at most `threshold`, or when
-//! no prefix gains. Deterministic (ties to the lowest index): every rank plans the same.
+//! one group, so relieving many busy groups at once costs about as much as relieving one. No moves
+//! when the imbalance max/mean - 1 is at most `threshold`, or when no prefix gains. Deterministic
+//! (ties to the lowest index): every rank plans the same.
 BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& owner, int groups,
                        double threshold, int horizon, double move_cost);
 
