@@ -8,7 +8,7 @@ set -euo pipefail
 case ${1:-build} in
   build)
     packages=(
-      g++ cmake make clang-format
+      g++ cmake make ninja-build clang-format
       openmpi-bin libopenmpi-dev
       liggghts libliggghts-dev
       lammps liblammps-dev

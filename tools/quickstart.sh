@@ -28,9 +28,13 @@ case $what:$demo in
 esac
 
 bash tools/install_deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-# The demo builds only the program it runs (the engine modules come with it); the tests need
-# the whole tree.
+# Ninja schedules every unit of every library at once (Make waits for a library before the next
+# one starts); an existing build/ keeps the generator it was made with.
+generator=()
+[[ -f build/CMakeCache.txt ]] || generator=(-G Ninja)
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
+# The demo builds only the program it runs and the engine modules it loads (docs/build.md); the
+# tests need the whole tree.
 if [[ $what == demo ]]; then
   cmake --build build -j"$jobs" --target mpm_lig
 else

@@ -40,7 +40,7 @@ def launch(log, cmd):
         out = cmd[2]
     with open(log, "a") as f:
         f.write(json.dumps({"kind": kind, "source": src, "output": out, "cpu": round(cpu, 3),
-                            "wall": round(wall, 3), "end": time.time()}) + "\n")
+                            "wall": round(wall, 3), "rc": rc, "end": time.time()}) + "\n")
     return rc
 
 
@@ -126,7 +126,8 @@ def main():
         with open(os.path.join(build, "build.log")) as f:
             warnings = sum("warning:" in line for line in f)
         with open(log) as f:
-            steps = [json.loads(line) for line in f]
+            # A step that failed and was run again (after a fix, with --resume) counts once.
+            steps = [s for s in map(json.loads, f) if s.get("rc", 0) == 0]
         path = critical_path(steps, build) if args.generator == "Ninja" else float("nan")
     finally:
         if not args.keep:
