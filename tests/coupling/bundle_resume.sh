@@ -1,8 +1,8 @@
 #!/bin/bash
 # Checkpoint bundles (docs/hpc.md §3): a checkpoint holds one bundle per rank group whose
 # members match the index and the manifest; a run killed after its step-4 checkpoint resumes
-# bit-identical to an uninterrupted run on another rank count (written on 1, resumed on 2, and
-# written on 2, resumed on 1); a checkpoint converted to format 4 (a file per point) resumes
+# bit-identical to an uninterrupted run on the same and on another rank count (1 -> 1, 2 -> 2,
+# 1 -> 2 and 2 -> 1); a checkpoint converted to format 4 (a file per point) resumes
 # bit-identical too; a flipped byte in a member, a cut or a lengthened bundle is refused
 # (exit 2, naming the point and the bundle) with history.csv untouched.
 # usage: bundle_resume.sh MPM_LIG CASE.json WORK_DIR MPIRUN...
@@ -35,7 +35,7 @@ for np in 1 2; do
   (cd "$work/killed$np/checkpoints/step_4" && sha256sum --quiet -c MANIFEST.sha256) || fail "sha256sum -c"
 done
 
-for pair in "1 2" "2 1"; do
+for pair in "1 1" "2 2" "1 2" "2 1"; do
   written=${pair% *} resumed=${pair#* }
   scenario="written on $written, resumed on $resumed"
   rm -rf "$work/run" && cp -a "$work/killed$written" "$work/run"
