@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "coupling/cost_record.h"
+#include "coupling/dem_statistics.h"
 #include "coupling/dem_work.h"
 #include "coupling/quiet_points.h"
 #include "coupling/rve_balance.h"
@@ -71,7 +72,9 @@ class DemRveMaterial final : public materials::Material {
   //! Its checkpoint holds every RVE (write_checkpoint / restore_checkpoint).
   bool checkpointable() const override { return true; }
   void write_snapshot(std::size_t point, const std::string& prefix) override;
-  materials::MaterialCost cost() const override;
+  //! dem_statistics() of its counters; the work shares; "stepping" once its RVEs are made;
+  //! "quiet_points" and "start_as_continuum" where the case asks for them.
+  materials::Report report() const override;
 
   //! Collective: every owned RVE writes `point_<i>.restart` in out.folder(); every point's
   //! named fields (PointCheckpoint) go to `out`. Only after the first update.
@@ -145,7 +148,7 @@ class DemRveMaterial final : public materials::Material {
   double rebalances_ = 0.0;
   long updates_ = 0;
   int rank_ = 0;
-  materials::MaterialCost cost_;
+  DemCost cost_;
 };
 
 }  // namespace mpm_lig::coupling

@@ -174,6 +174,7 @@ void read_mesh(const CaseNode& m, MpmCase& c) {
 
 void read_materials(const CaseNode& root, const materials::MaterialRegistry& registry, MpmCase& c,
                     MaterialSet& materials) {
+  materials.set_zero_statistics(registry.statistics());
   const auto nodes = root.children("materials");
   if (nodes.empty())
     root.fail("materials", "needs at least one material");
