@@ -41,7 +41,7 @@ struct Packing {
 //! MPM_LIG_FAULT_UPDATE=u at start-up): the rank that owns point i sends its engine an unknown
 //! command at update u; the engine's own error path must end the whole job naming the point
 //! and its rank.
-class DemRveMaterial final : public materials::Material {
+class DemRveMaterial final : public materials::Material, public materials::MicrostructureSnapshots {
  public:
   //! Validates the whole node; creates nothing.
   explicit DemRveMaterial(const CaseNode& node);
@@ -67,7 +67,6 @@ class DemRveMaterial final : public materials::Material {
               std::vector<Mat3>& stress) override;
   std::vector<std::string> state_names() const override;
   double state(std::size_t point, std::size_t k) const override;
-  bool has_snapshots() const override { return true; }
   bool accepts_initial_stress() const override { return false; }
   //! Its checkpoint holds every RVE (write_checkpoint / restore_checkpoint).
   bool checkpointable() const override { return true; }

@@ -95,12 +95,25 @@ class Material {
   //! Named statistics of the run so far for summary.json (materials/statistics.h): a DEM
   //! material's costs; none for continuum laws.
   virtual Report report() const { return {}; }
-  //! Whether a point has a microstructure to draw (a DEM point's RVE).
-  virtual bool has_snapshots() const { return false; }
-  //! Collective over the material's communicator: write `point`'s microstructure as
-  //! PREFIX_{grains,contacts,cell}.vtk (only where has_snapshots()).
-  virtual void write_snapshot(std::size_t /*point*/, const std::string& /*prefix*/) {}
 };
+
+//! A material whose points have a microstructure to draw (a DEM point's RVE), besides being a
+//! Material: the MPM finds it with snapshots_of(), so Material itself has no hook for it.
+class MicrostructureSnapshots {
+ public:
+  virtual ~MicrostructureSnapshots() = default;
+  //! Collective over the material's communicator: write `point`'s microstructure as
+  //! PREFIX_{grains,contacts,cell}.vtk.
+  virtual void write_snapshot(std::size_t point, const std::string& prefix) = 0;
+};
+
+//! `material`'s snapshots, null when its points have no microstructure to draw.
+inline MicrostructureSnapshots* snapshots_of(Material& material) {
+  return dynamic_cast<MicrostructureSnapshots*>(&material);
+}
+inline bool has_snapshots(const Material& material) {
+  return dynamic_cast<const MicrostructureSnapshots*>(&material) != nullptr;
+}
 
 //! Creates a material from its case node (`materials[i]`); the node's "type" picks the entry.
 //! A family whose materials report statistics registers them here at their zero values, so
