@@ -9,6 +9,7 @@
 
 #include "core/mpi_session.h"
 #include "core/stop_signal.h"
+#include "coupling/point_bundle.h"
 #include "coupling/point_checkpoint.h"
 #include "coupling/rve_migration.h"
 #include "dem/file_name.h"
@@ -59,6 +60,10 @@ Packing packing_from(const double* v, const std::string& restart_file) {
 
 constexpr const char* kOwnersName = "rve_owner";   // groups, then every point's group
 constexpr const char* kSteppingName = "stepping";  // StepTotals ×3, migrations, rebalances
+// Every point's members in its writer's bundle (kPointIndexWidth values per point); absent
+// in checkpoints of format 4 and before, whose points are files of their own.
+constexpr const char* kBundleIndexName = "bundle_index";
+constexpr const char* kBundleMembersName = "bundle_members_per_point";
 
 std::string checkpoint_file(const std::string& dir, std::size_t point) {
   return dir + "/point_" + std::to_string(point) + ".restart";
@@ -529,17 +534,31 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
   if (points != points_)
     throw std::logic_error(path_ + ": checkpoint of " + std::to_string(points) + " points, not " +
                            std::to_string(points_));
-  std::vector<double> owned;
+  std::vector<double> owned, index;
+  // The group's leader writes its RVEs into one bundle, in point order (docs/hpc.md §3).
+  std::unique_ptr<PointBundleWriter> bundle;
+  if (!layout_->owned().empty())
+    bundle = or_end_job(path_ + ": checkpoint not written (the previous one is kept)", [&] {
+      return std::make_unique<PointBundleWriter>(out.folder(), scratch_folder(),
+                                                 group_leader_rank(), layout_->group_comm());
+    });
   for (const std::size_t p : layout_->owned()) {
     rve::Rve& rve = *rves_[p];
     or_end_job(point_label(p) + ": checkpoint not written (the previous one is kept)",
-               [&] { rve.write_checkpoint(checkpoint_file(out.folder(), p)); });
+               [&] { bundle->add(rve, index); });
     PointCheckpoint saved{stress_[p], substeps_[p], rve.state()};
     std::copy(work_.row(p), work_.row(p) + DemWork::kValues, saved.work);
     quiet_.save_row(p, saved.quiet);
     pack(saved, owned);
   }
+  const std::string digest =
+      bundle ? or_end_job(path_ + ": checkpoint not written (the previous one is kept)",
+                          [&] { return bundle->close(); })
+             : "";
+  record_bundle_digests(out, digest);
   write_points(out, layout_->gather(owned, static_cast<int>(point_checkpoint_width())));
+  out.write(kBundleIndexName, layout_->gather(index, static_cast<int>(kPointIndexWidth)));
+  out.set(kBundleMembersName, static_cast<double>(kPointMembers));
   out.set("updates", static_cast<double>(updates_));
   out.set("particle_steps", cost_.particle_steps);
   for (const QuietStatField& f : kQuietStatFields)
@@ -563,6 +582,12 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     throw std::logic_error(path_ + ": restore of " + std::to_string(stress.size()) +
                            " points, not " + std::to_string(points_));
   const std::vector<double> rows = read_points(in, points_);
+  const std::vector<double> index =
+      in.has(kBundleIndexName) ? in.read(kBundleIndexName) : std::vector<double>();
+  if (!index.empty() && index.size() != points_ * kPointIndexWidth)
+    throw std::runtime_error(in.describe() + ": the bundle index holds " +
+                             std::to_string(index.size() / kPointIndexWidth) +
+                             " DEM points, the case has " + std::to_string(points_));
   const double start = MPI_Wtime();
   layout_ = std::make_unique<RveLayout>(comm_, ranks_per_rve_, points_);
   if (in.has(kOwnersName)) {
@@ -597,11 +622,17 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     if (!layout_->owns(p))
       continue;
     rves_[p] = or_end_job(in.describe() + ": " + point_label(p) + " not restored", [&] {
-      return rve::Rve::from_checkpoint(spec_, checkpoint_file(in.folder(), p),
-                                       layout_->group_comm(), point_label(p));
+      // Format 5: the point's byte ranges of its writer's bundle; before, files of its own.
+      const std::string file =
+          index.empty() ? checkpoint_file(in.folder(), p)
+                        : unbundle_point(in.folder(), index.data() + p * kPointIndexWidth,
+                                         scratch_folder(), layout_->group_comm());
+      return rve::Rve::from_checkpoint(spec_, file, layout_->group_comm(), point_label(p));
     });
     rves_[p]->restore(saved.rve);
   }
+  if (!index.empty())
+    remove_scratch(scratch_folder(), layout_->group_comm());
   updates_ = static_cast<long>(in.get("updates"));
   QuietStats stats;
   for (const QuietStatField& f : kQuietStatFields)
@@ -611,6 +642,33 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
   cost_.particle_steps = in.get("particle_steps");
   start_cost_record(true);
   cost_.preparation_seconds += MPI_Wtime() - start;
+}
+
+int DemRveMaterial::group_leader_rank() const {
+  return rank_ - rank_ % ranks_per_rve_;
+}
+
+std::string DemRveMaterial::scratch_folder() const {
+  if (work_dir_.empty())
+    throw std::logic_error(path_ + ": no work folder for the checkpoint's scratch files");
+  return work_dir_ + "/checkpoint_scratch_rank_" + std::to_string(group_leader_rank());
+}
+
+void DemRveMaterial::record_bundle_digests(materials::CheckpointWriter& out,
+                                           const std::string& digest) const {
+  // Every rank learns every bundle's digest (64 hexadecimal characters, or none).
+  constexpr int kHexLength = 64;
+  int ranks = 1;
+  MPI_Comm_size(comm_, &ranks);
+  std::string mine = digest;
+  mine.resize(kHexLength, ' ');
+  std::string all(static_cast<std::size_t>(ranks * kHexLength), ' ');
+  MPI_Allgather(mine.data(), kHexLength, MPI_CHAR, all.data(), kHexLength, MPI_CHAR, comm_);
+  for (int r = 0; r < ranks; ++r) {
+    if (all[static_cast<std::size_t>(r * kHexLength)] != ' ')
+      out.record_digest(io::bundle_name(r),
+                        all.substr(static_cast<std::size_t>(r * kHexLength), kHexLength));
+  }
 }
 
 std::vector<std::string> DemRveMaterial::state_names() const {

@@ -75,10 +75,12 @@ class DemRveMaterial final : public materials::Material, public materials::Micro
   //! "quiet_points" and "start_as_continuum" where the case asks for them.
   materials::Report report() const override;
 
-  //! Collective: every owned RVE writes `point_<i>.restart` in out.folder(); every point's
-  //! named fields (PointCheckpoint) go to `out`. Only after the first update.
+  //! Collective: every group writes its RVEs into `rank_<r>.bundle` in out.folder() (r: the
+  //! group leader's rank; point_bundle.h), the index of every point's members and every
+  //! point's named fields (PointCheckpoint) go to `out`. Only after the first update.
   void write_checkpoint(materials::CheckpointWriter& out, std::size_t points) override;
-  //! Collective: the RVEs again from the checkpoint, before any update.
+  //! Collective: the RVEs again from the checkpoint, before any update: from the bundles
+  //! (any rank count) or, in a checkpoint of format 4, from point_<i>.restart files.
   void restore_checkpoint(const materials::CheckpointReader& in,
                           const std::vector<Mat3>& stress) override;
   //! update() calls so far (MPM steps).
@@ -120,6 +122,12 @@ class DemRveMaterial final : public materials::Material, public materials::Micro
   void inject_fault_if_asked(std::size_t point, rve::Rve& rve) const;
   std::size_t packing_of(std::size_t point) const { return point % packings_.size(); }
   std::string point_label(std::size_t point) const;
+  //! The rank (in the run) of this rank's group leader: it writes the group's bundle.
+  int group_leader_rank() const;
+  //! The group's scratch folder for the files the engines write and read (under work_dir_).
+  std::string scratch_folder() const;
+  //! Collective: every bundle's SHA-256 (`digest`: this rank's, or "") goes to out.
+  void record_bundle_digests(materials::CheckpointWriter& out, const std::string& digest) const;
 
   rve::RveSpec spec_;
   std::string path_;

@@ -17,6 +17,9 @@ class CheckpointWriter {
   virtual void write(const std::string& name, const std::vector<double>& values) = 0;
   //! Store one number as `name`.
   virtual void set(const std::string& name, double value) = 0;
+  //! The SHA-256 of `file` (relative to folder()), computed by the rank that wrote it: the
+  //! checkpoint's manifest lists it without reading the file again.
+  virtual void record_digest(const std::string& file, const std::string& sha256) = 0;
 };
 
 //! The material's part of a checkpoint read back; every lookup throws naming the checkpoint

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 
 #include "core/build_id.h"
@@ -42,8 +43,9 @@ void unflatten(const std::vector<double>& flat, std::vector<T>& values, const st
 //! by rank 0), its files go to the folder m<id>/.
 class MaterialWriter final : public materials::CheckpointWriter {
  public:
-  MaterialWriter(io::CheckpointFile* file, std::string prefix, std::string folder)
-      : file_(file), prefix_(std::move(prefix)), folder_(std::move(folder)) {}
+  MaterialWriter(io::CheckpointFile* file, std::string prefix, std::string folder,
+                 std::map<std::string, std::string>& digests)
+      : file_(file), prefix_(std::move(prefix)), folder_(std::move(folder)), digests_(digests) {}
   std::string folder() const override { return folder_; }
   void write(const std::string& name, const std::vector<double>& values) override {
     if (file_)
@@ -53,10 +55,14 @@ class MaterialWriter final : public materials::CheckpointWriter {
     if (file_)
       file_->set(prefix_ + name, value);
   }
+  void record_digest(const std::string& file, const std::string& sha256) override {
+    digests_[fs::path(folder_).filename().string() + "/" + file] = sha256;
+  }
 
  private:
   io::CheckpointFile* file_;  // null on ranks other than 0
   std::string prefix_, folder_;
+  std::map<std::string, std::string>& digests_;  // checkpoint-relative file -> SHA-256
 };
 
 class MaterialReader final : public materials::CheckpointReader {
@@ -130,9 +136,10 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
 
 //! Rank 0, once every rank has written its files: checksums, then `latest` (atomically), then
 //! the previous checkpoint goes. A kill at any moment leaves one complete checkpoint.
-void commit(const std::string& run_dir, const std::string& name) {
+void commit(const std::string& run_dir, const std::string& name,
+            const std::map<std::string, std::string>& digests) {
   const std::string root = CheckpointFolder::root(run_dir);
-  io::write_manifest(root + "/" + name, CheckpointFolder::kManifest);
+  io::write_manifest(root + "/" + name, CheckpointFolder::kManifest, digests);
   const std::string previous = CheckpointFolder::latest_name_or_empty(run_dir);
   io::replace_file(root + "/latest", name + '\n');
   if (!previous.empty() && previous != name)
@@ -182,13 +189,15 @@ void write_checkpoint(const MpmCase& c, Solver<D>& solver, const RecorderState& 
                                                 io::CheckpointFile::Mode::create);
   });
   MPI_Barrier(comm);
+  std::map<std::string, std::string> digests;
   for (std::size_t m = 0; m < solver.materials().size(); ++m) {
-    MaterialWriter out(file.get(), material_name(c, m) + "_", dir + "/" + material_name(c, m));
+    MaterialWriter out(file.get(), material_name(c, m) + "_", dir + "/" + material_name(c, m),
+                       digests);
     solver.materials()[m]->write_checkpoint(out, material_stresses(solver.particles(), m).size());
   }
   on_rank0_or_end_job(rank, step, [&] { write_state(c, solver, recorder, *file, dir); });
   MPI_Barrier(comm);
-  on_rank0_or_end_job(rank, step, [&] { commit(run_dir, name); });
+  on_rank0_or_end_job(rank, step, [&] { commit(run_dir, name, digests); });
   MPI_Barrier(comm);
 }
 

@@ -20,10 +20,13 @@ struct RecorderState {
 //!     step_<n>/mpm.h5          particle arrays (exact doubles), clock, footings, recorder
 //!                              state, and what each material saves (Material::write_checkpoint)
 //!                              as datasets and attributes named m<id>_...
-//!     step_<n>/m<id>/          files of material <id> (a dem_rve: point_<i>.restart, every
-//!                              RVE's engine restart with its contact history)
+//!     step_<n>/m<id>/          files of material <id> (a dem_rve: rank_<r>.bundle, one per
+//!                              rank group, every RVE's engine restart with its contact
+//!                              history and its exact placement, indexed in mpm.h5)
 //!     step_<n>/case.json       the case it was written for (a resume compares)
-//!     step_<n>/MANIFEST.sha256 checksums of every file above (`sha256sum -c` reads it)
+//!     step_<n>/build           the build that wrote it
+//!     step_<n>/MANIFEST.sha256 checksums of every file above (`sha256sum -c` reads it); a
+//!                              bundle's comes from the rank that wrote it
 //!     latest                   text: the name of the last complete step folder
 //!
 //! `latest` is replaced atomically (rename) after all ranks finished writing and the manifest

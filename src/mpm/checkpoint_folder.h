@@ -8,7 +8,8 @@ namespace mpm_lig::mpm {
 //!
 //!     checkpoints/latest               text: the name of the last complete step folder
 //!     checkpoints/step_<n>/            one checkpoint (after MPM step n)
-//!         mpm.h5, m<id>/..., case.json (the case it was written for), MANIFEST.sha256
+//!         mpm.h5, m<id>/... (a dem_rve: rank_<r>.bundle), case.json (the case it was
+//!         written for), build, MANIFEST.sha256
 //!
 //! `latest` is the only name read from disk. It must be a plain `step_<n>`: a run never reads,
 //! writes or deletes outside its folder because of a name it found inside it.
@@ -22,8 +23,13 @@ struct CheckpointFolder {
   //! grains' exact placement beside its engine restart (point_<i>.restart.placement). 3: and
   //! its quiet-point state (the point field quiet_points, and the quiet_* run statistics).
   //! 4: and whether it is still its packing's continuum (a 33rd quiet_points value, and the
-  //! continuum_* run statistics).
-  static constexpr int kFormat = 4;
+  //! continuum_* run statistics). 5: a dem_rve's points are members of one bundle per rank
+  //! group, m<id>/rank_<r>.bundle, indexed in mpm.h5 (m<id>_bundle_index: rank, offset,
+  //! length and SHA-256 of each point's restart and placement; docs/hpc.md §3) instead of
+  //! two files per point. Format 4 is still read.
+  static constexpr int kFormat = 5;
+  //! The oldest layout this build resumes.
+  static constexpr int kOldestFormat = 4;
 
   //! `run_dir/checkpoints`.
   static std::string root(const std::string& run_dir);

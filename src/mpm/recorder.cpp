@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -35,17 +34,7 @@ void truncate_rows(const std::string& filename, long rows) {
   in.close();
   if (lines != rows + 1)
     throw std::runtime_error("'" + filename + "' holds fewer rows than the checkpoint");
-  io::replace_atomically(
-      filename,
-      [&](const std::string& cut) {
-        std::ofstream out(cut, std::ios::trunc);
-        out << kept;
-        out.close();
-        std::error_code error;
-        if (!out || std::filesystem::file_size(cut, error) != kept.size())
-          throw std::runtime_error("cannot write '" + cut + "' ('" + filename + "' is unchanged)");
-      },
-      ".resume_tmp");
+  io::replace_file(filename, kept, ".resume_tmp");
 }
 
 //! DIR/history.csv, cut to the checkpoint's rows for a resumed run.

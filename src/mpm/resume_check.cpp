@@ -3,11 +3,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <vector>
 
 #include "core/build_id.h"
 #include "core/case_error.h"
 #include "core/printable.h"
+#include "io/bundle.h"
 #include "io/checkpoint_file.h"
 #include "io/field_index.h"
 #include "io/file_digest.h"
@@ -57,9 +59,11 @@ void check_state(const MpmCase& c, const std::string& folder) {
   const io::CheckpointFile state(folder + "/" + CheckpointFolder::kState,
                                  io::CheckpointFile::Mode::read);
   const int format = state.has_attribute("format") ? static_cast<int>(state.get("format")) : 1;
-  if (format != CheckpointFolder::kFormat)
-    throw ResumeError("checkpoint '" + folder + "' has layout " + std::to_string(format) +
-                      " (an older mpm_lig wrote it); this build reads layout " +
+  if (format < CheckpointFolder::kOldestFormat || format > CheckpointFolder::kFormat)
+    throw ResumeError("checkpoint '" + folder + "' has layout " + std::to_string(format) + " (" +
+                      (format < CheckpointFolder::kOldestFormat ? "an older" : "a newer") +
+                      " mpm_lig wrote it); this build reads layouts " +
+                      std::to_string(CheckpointFolder::kOldestFormat) + " to " +
                       std::to_string(CheckpointFolder::kFormat) +
                       ": run the case from the start with another --output");
   const std::string bad = state.first_non_finite();
@@ -112,10 +116,77 @@ void warn_if_other_build(const std::string& folder) {
                  written.empty() ? "(not recorded)" : printable(written, 80).c_str(), build_id());
 }
 
+//! A bundle's content is checked member by member against the index (bundle_problem).
+bool is_bundle(const std::string& relative) {
+  const std::string suffix = ".bundle";
+  return relative.size() > suffix.size() &&
+         relative.compare(relative.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+//! `problem` of rank `root`, on every rank.
+std::string share(std::string problem, int root, MPI_Comm comm) {
+  int length = static_cast<int>(problem.size());
+  MPI_Bcast(&length, 1, MPI_INT, root, comm);
+  problem.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(problem.data(), length, MPI_CHAR, root, comm);
+  return problem;
+}
+
+//! Collective: every member of every bundle of checkpoint `folder` read and checked against
+//! the SHA-256 its writer recorded in the index, the members dealt out over the ranks (so no
+//! rank reads the whole checkpoint); the first rank's problem, or "".
+std::string bundle_problem(const MpmCase& c, const std::string& folder, MPI_Comm comm) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  std::string problem;
+  try {
+    const io::CheckpointFile state(folder + "/" + CheckpointFolder::kState,
+                                   io::CheckpointFile::Mode::read);
+    for (const int id : c.material_ids) {
+      const std::string material = "m" + std::to_string(id);
+      if (!state.has(material + "_bundle_index"))
+        continue;
+      const std::vector<double> index = state.read(material + "_bundle_index");
+      const auto per_point =
+          static_cast<std::size_t>(state.get(material + "_bundle_members_per_point"));
+      if (per_point == 0 || index.size() % (per_point * io::kBundleMemberWidth) != 0)
+        throw std::runtime_error("its bundle index of material " + std::to_string(id) +
+                                 " is damaged");
+      std::vector<io::BundleMember> members;
+      for (std::size_t k = 0; k < index.size(); k += io::kBundleMemberWidth)
+        members.push_back(io::unpack_member(index.data() + k));
+      const std::string bundles = folder + "/" + material;
+      if (rank == 0)
+        problem = io::bundle_layout_problem(bundles, members);
+      for (std::size_t k = static_cast<std::size_t>(rank); problem.empty() && k < members.size();
+           k += static_cast<std::size_t>(ranks)) {
+        try {
+          io::read_member(bundles, members[k]);
+        } catch (const std::exception& e) {
+          problem = "material " + std::to_string(id) + ", material point " +
+                    std::to_string(k / per_point) + ", member " + std::to_string(k % per_point) +
+                    ": " + e.what();
+        }
+      }
+      if (!problem.empty())
+        break;
+    }
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  const int mine = problem.empty() ? ranks : rank;
+  int first = ranks;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == ranks)
+    return "";
+  return "checkpoint '" + folder + "' is damaged: " + share(problem, first, comm);
+}
+
 std::string resume_problem(const MpmCase& c, const std::string& run_dir) {
   try {
     const std::string folder = CheckpointFolder::latest(run_dir);
-    const std::string damage = io::manifest_problem(folder, CheckpointFolder::kManifest);
+    const std::string damage = io::manifest_problem(folder, CheckpointFolder::kManifest, is_bundle);
     if (!damage.empty())
       return "checkpoint '" + folder + "' is damaged: " + damage;
     check_case(c, folder);
@@ -132,11 +203,9 @@ std::string resume_problem(const MpmCase& c, const std::string& run_dir) {
 void check_resume(const MpmCase& c, const std::string& run_dir, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  std::string problem = rank == 0 ? resume_problem(c, run_dir) : "";
-  int length = static_cast<int>(problem.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  problem.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(problem.data(), length, MPI_CHAR, 0, comm);
+  std::string problem = share(rank == 0 ? resume_problem(c, run_dir) : "", 0, comm);
+  if (problem.empty())
+    problem = bundle_problem(c, CheckpointFolder::latest(run_dir), comm);
   if (!problem.empty())
     throw ResumeError(problem);
   if (rank == 0)

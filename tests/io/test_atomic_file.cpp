@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_files.h"
+
 #include "io/atomic_file.h"
 
 namespace mpm_lig::io {
@@ -14,10 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string fresh_dir(const std::string& name) {
-  const std::string dir = std::string(MPM_LIG_BINARY_DIR) + "/test_output/atomic_file/" + name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test_support::fresh_dir("atomic_file", name);
 }
 
 std::string read_text(const std::string& filename) {
@@ -25,16 +24,7 @@ std::string read_text(const std::string& filename) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-//! The message of what `work` throws, or "" when it does not throw.
-template <class Work>
-std::string error_of(Work&& work) {
-  try {
-    work();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::error_of;
 
 TEST(AtomicFile, ReplacesTheWholeFileAndLeavesNoTemporary) {
   const std::string dir = fresh_dir("replace");

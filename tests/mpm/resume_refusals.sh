@@ -108,7 +108,7 @@ with h5py.File(sys.argv[1], "r+") as f:
 PY
 (cd "$work/run/checkpoints/step_16" && find . -type f ! -name MANIFEST.sha256 -printf '%P\n' | sort | xargs sha256sum > MANIFEST.sha256)
 digest "$work/run" > "$work/before"
-resume_refused "has layout 1 \(an older mpm_lig wrote it\); this build reads layout 4"
+resume_refused "has layout 1 \(an older mpm_lig wrote it\); this build reads layouts 4 to 5"
 
 scenario="checkpoint of another build (checksums made to match): resumed with a warning"
 fresh; echo "other-build" > "$work/run/checkpoints/step_16/build"

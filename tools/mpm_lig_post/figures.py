@@ -44,3 +44,14 @@ def save(fig, path, dpi=None):
     fig.savefig(path, dpi=dpi or STYLE["savefig.dpi"])
     pyplot().close(fig)
     print(f"wrote {path}")
+
+
+def run_name(directory):
+    """A run's name in titles: its output folder's own name."""
+    return os.path.basename(os.path.abspath(directory))
+
+
+def finish(fig, path, dpi=None):
+    """Lay the figure out and save it: the last step of every picture command."""
+    fig.tight_layout()
+    save(fig, path, dpi)

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .quantities import CURVE, SCALAR, SERIES
+from .quantities import SCALAR, SERIES
 
 
 def _curve_on(x_ref, curve):

@@ -21,7 +21,6 @@ Prints a table of particle-steps/s (median of the repeats) and time ratios: lib-
 native-chunked against native, lib-chunked against native-chunked (the cost of our path for
 the same engine work; the engine's own per-run setup is in both). Writes JSON.
 """
-import argparse
 import json
 import os
 import random

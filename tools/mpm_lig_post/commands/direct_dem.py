@@ -448,7 +448,7 @@ class Run:
         pb = self.pb
         lx, ly = self.prepared["cell"]
         self.lx, self.ly = lx, ly
-        rmax, d = self.pb["rmax"], self.pb["d"]
+        rmax = pb["rmax"]
         # The servo scaled the cell about its centre: move it back to the origin first.
         self.send(f"change_box all x final 0.0 {lx!r} y final 0.0 {ly!r} remap units box\n"
                   "change_box all boundary f m p")

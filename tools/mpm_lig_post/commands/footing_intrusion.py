@@ -79,9 +79,8 @@ def main():
     bottom.set_ylabel("points inside\nthe footing")
     bottom.set_xlabel(r"normalised settlement $s/B$ [–]")
     bottom.set_xlim(left=0)
-    top.set_title(f"footing load and points inside it: {os.path.basename(os.path.abspath(directory))}")
-    fig.tight_layout()
-    figures.save(fig, cli.picture_path(args), args.dpi)
+    top.set_title(f"footing load and points inside it: {figures.run_name(directory)}")
+    figures.finish(fig, cli.picture_path(args), args.dpi)
 
 
 def entry():

@@ -116,10 +116,9 @@ def main():
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(f"where the DEM work went: {os.path.basename(os.path.abspath(directory))}, "
+    ax.set_title(f"where the DEM work went: {figures.run_name(directory)}, "
                  f"t = {time:.3g} s")
-    fig.tight_layout()
-    figures.save(fig, cli.picture_path(args), args.dpi)
+    figures.finish(fig, cli.picture_path(args), args.dpi)
 
 
 def entry():

@@ -130,8 +130,7 @@ def main():
         ax.set_xlabel(f"{names[0]} [m]")
         ax.set_ylabel(f"{names[1]} [m]")
         ax.set_title(f"{title}, step {step.step}, t = {step.time:.4g} s{where}")
-    fig.tight_layout()
-    figures.save(fig, cli.picture_path(args), args.dpi)
+    figures.finish(fig, cli.picture_path(args), args.dpi)
     fields.close()
 
 

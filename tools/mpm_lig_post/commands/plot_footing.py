@@ -156,9 +156,8 @@ def main():
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
     else:
         ax.legend(loc="lower right" if not others else "best", frameon=False)
-    ax.set_title(f"strip footing, B = {width:g} m: {os.path.basename(os.path.abspath(directory))}")
-    fig.tight_layout()
-    figures.save(fig, cli.picture_path(args), args.dpi)
+    ax.set_title(f"strip footing, B = {width:g} m: {figures.run_name(directory)}")
+    figures.finish(fig, cli.picture_path(args), args.dpi)
 
 
 def entry():

@@ -141,7 +141,7 @@ def main():
         times, height, pressure, point_gamma = point_series(directory)
         print_points(height, pressure, point_gamma)
         points = (times, height, pressure)
-    draw(gamma, tau, p, cycle, f"cyclic simple shear: {os.path.basename(os.path.abspath(directory))}",
+    draw(gamma, tau, p, cycle, f"cyclic simple shear: {figures.run_name(directory)}",
          cli.picture_path(args), args.dpi, points)
 
 
