@@ -425,7 +425,7 @@ void DemRveMaterial::migrate(const std::vector<int>& owners) {
                              point_label(p));
         });
   }
-  cost_.stepping.migration_seconds += MPI_Wtime() - start;
+  cost_.migration_seconds += MPI_Wtime() - start;
 }
 
 void DemRveMaterial::account(const std::vector<double>& predicted_steps,
@@ -691,32 +691,17 @@ void DemRveMaterial::write_snapshot(std::size_t point, const std::string& prefix
     rve::write_snapshot(*rves_[point], prefix, layout_->group_leader());
 }
 
-materials::MaterialCost DemRveMaterial::cost() const {
-  materials::MaterialCost c = cost_;
-  c.particle_steps_at_max = work_.sum(1);
-  c.particle_steps_low_stress = work_.sum(2);
-  c.particle_steps_quiet = work_.sum(3);
-  const QuietStats& q = quiet_.stats();
+materials::Report DemRveMaterial::report() const {
+  materials::Report r = dem_statistics(cost_);
+  add_work_shares(r, work_.sum(1), work_.sum(2), work_.sum(3));
+  if (layout_)
+    add_stepping(r, {static_cast<double>(layout_->groups()), predicted_totals_, work_totals_,
+                     seconds_totals_, migrations_, rebalances_, cost_.migration_seconds});
   if (quiet_.quiet_enabled())
-    c.quiet = {true, q.predictions, q.dem_updates, q.checks, q.error_sum, q.max_error, q.exceeded};
-  if (layout_) {
-    materials::SteppingCost& t = c.stepping;
-    t.enabled = true;
-    t.groups = layout_->groups();
-    t.work_predicted = predicted_totals_.work;
-    t.makespan_predicted = predicted_totals_.makespan;
-    t.work = work_totals_.work;
-    t.makespan = work_totals_.makespan;
-    t.bound = work_totals_.bound;
-    t.seconds = seconds_totals_.work;
-    t.makespan_seconds = seconds_totals_.makespan;
-    t.migrations = migrations_;
-    t.rebalances = rebalances_;
-  }
+    add_quiet_points(r, quiet_.stats());
   if (quiet_.continuum_start_enabled())
-    c.continuum_start = {true,       q.continuum_updates, q.switches,       q.jump_sum,
-                         q.max_jump, q.jumps_exceeded,    q.threshold_scale};
-  return c;
+    add_continuum_start(r, quiet_.stats(), static_cast<double>(cost_.simulations));
+  return r;
 }
 
 }  // namespace mpm_lig::coupling

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "coupling/cost_record.h"
+#include "coupling/dem_statistics.h"
 #include "coupling/dem_work.h"
 #include "coupling/quiet_points.h"
 #include "coupling/rve_balance.h"
@@ -40,7 +41,7 @@ struct Packing {
 //! MPM_LIG_FAULT_UPDATE=u at start-up): the rank that owns point i sends its engine an unknown
 //! command at update u; the engine's own error path must end the whole job naming the point
 //! and its rank.
-class DemRveMaterial final : public materials::Material {
+class DemRveMaterial final : public materials::Material, public materials::MicrostructureSnapshots {
  public:
   //! Validates the whole node; creates nothing.
   explicit DemRveMaterial(const CaseNode& node);
@@ -66,12 +67,13 @@ class DemRveMaterial final : public materials::Material {
               std::vector<Mat3>& stress) override;
   std::vector<std::string> state_names() const override;
   double state(std::size_t point, std::size_t k) const override;
-  bool has_snapshots() const override { return true; }
   bool accepts_initial_stress() const override { return false; }
   //! Its checkpoint holds every RVE (write_checkpoint / restore_checkpoint).
   bool checkpointable() const override { return true; }
   void write_snapshot(std::size_t point, const std::string& prefix) override;
-  materials::MaterialCost cost() const override;
+  //! dem_statistics() of its counters; the work shares; "stepping" once its RVEs are made;
+  //! "quiet_points" and "start_as_continuum" where the case asks for them.
+  materials::Report report() const override;
 
   //! Collective: every group writes its RVEs into `rank_<r>.bundle` in out.folder() (r: the
   //! group leader's rank; point_bundle.h), the index of every point's members and every
@@ -153,7 +155,7 @@ class DemRveMaterial final : public materials::Material {
   double rebalances_ = 0.0;
   long updates_ = 0;
   int rank_ = 0;
-  materials::MaterialCost cost_;
+  DemCost cost_;
 };
 
 }  // namespace mpm_lig::coupling

@@ -13,6 +13,7 @@
 #include "core/tensor.h"
 #include "core/test_hooks.h"
 #include "materials/checkpoint_io.h"
+#include "materials/statistics.h"
 
 namespace mpm_lig::materials {
 
@@ -21,61 +22,6 @@ struct MaterialContext {
   MPI_Comm comm = MPI_COMM_WORLD;  //!< every rank of the run (the MPM is replicated on all)
   std::string work_dir;            //!< for files the material makes (packings); may not exist yet
   TestHooks hooks;                 //!< fault injection asked for by the tests
-};
-
-//! Stresses predicted instead of computed (a DEM material's quiet points), and the checks of
-//! those predictions against real updates.
-struct PredictionCost {
-  bool enabled = false;
-  double predictions = 0.0;  //!< point-updates predicted
-  double updates = 0.0;      //!< point-updates computed
-  double checks = 0.0;       //!< computed updates that checked a prediction
-  double error_sum = 0.0;    //!< of the checked relative errors
-  double max_error = 0.0;
-  double exceeded = 0.0;  //!< checks above the material's error bound
-};
-
-//! Points that started as their packing's continuum and switched to DEM past a threshold,
-//! and the stress jumps the switches made.
-struct ContinuumStartCost {
-  bool enabled = false;
-  double continuum_updates = 0.0;  //!< point-updates before the points' switches
-  double switches = 0.0;           //!< points switched to DEM
-  double jump_sum = 0.0;           //!< of the relative stress jumps at the switches
-  double max_jump = 0.0;
-  double jumps_exceeded = 0.0;   //!< switches above the material's jump bound
-  double threshold_scale = 1.0;  //!< the smallest factor the thresholds were halved to
-  double points = 0.0;           //!< points of the materials with a continuum start
-};
-
-//! How busy the rank groups of a material's simulations were, step by step (replicated: the
-//! same on every rank except migration_seconds, this rank's). Work is in DEM particle-steps,
-//! an update's fixed cost included; efficiency = work / (groups × makespan).
-struct SteppingCost {
-  bool enabled = false;
-  double groups = 0.0;
-  double work_predicted = 0.0, makespan_predicted = 0.0;  //!< from the predicted costs
-  double work = 0.0, makespan = 0.0, bound = 0.0;         //!< from the measured steps
-  double seconds = 0.0, makespan_seconds = 0.0;           //!< the owners' measured times
-  double migrations = 0.0;                                //!< RVEs moved to another group
-  double rebalances = 0.0;                                //!< updates before which RVEs moved
-  double migration_seconds = 0.0;  //!< this rank's time moving them (waits included)
-};
-
-//! Cost counters of a material whose points run simulations of their own (DEM RVEs). The
-//! same on every rank except the times, which are this rank's.
-struct MaterialCost {
-  std::size_t simulations = 0;         //!< RVEs (all ranks)
-  double particle_steps = 0.0;         //!< DEM grain-steps so far, each RVE counted once
-  double compute_seconds = 0.0;        //!< this rank's time in its RVEs
-  double communication_seconds = 0.0;  //!< this rank's time exchanging stresses (waits included)
-  double preparation_seconds = 0.0;    //!< prepare(): packings made or loaded
-  double particle_steps_at_max = 0.0;  //!< of particle_steps: updates at substeps.max
-  double particle_steps_low_stress = 0.0;  //!< in packings at low stress (coupling::DemWork)
-  double particle_steps_quiet = 0.0;       //!< in quiet updates, dF near 1 (coupling::DemWork)
-  PredictionCost quiet;
-  ContinuumStartCost continuum_start;
-  SteppingCost stepping;
 };
 
 //! The constitutive side of a material point, seen by the MPM solver.
@@ -146,17 +92,44 @@ class Material {
   //! naming the checkpoint when it does not fit this material. Default: restore_stress() and
   //! set_state() from "state".
   virtual void restore_checkpoint(const CheckpointReader& in, const std::vector<Mat3>& stress);
-  //! Cost counters (zero for continuum laws).
-  virtual MaterialCost cost() const { return {}; }
-  //! Whether a point has a microstructure to draw (a DEM point's RVE).
-  virtual bool has_snapshots() const { return false; }
-  //! Collective over the material's communicator: write `point`'s microstructure as
-  //! PREFIX_{grains,contacts,cell}.vtk (only where has_snapshots()).
-  virtual void write_snapshot(std::size_t /*point*/, const std::string& /*prefix*/) {}
+  //! Named statistics of the run so far for summary.json (materials/statistics.h): a DEM
+  //! material's costs; none for continuum laws.
+  virtual Report report() const { return {}; }
 };
 
+//! A material whose points have a microstructure to draw (a DEM point's RVE), besides being a
+//! Material: the MPM finds it with snapshots_of(), so Material itself has no hook for it.
+class MicrostructureSnapshots {
+ public:
+  virtual ~MicrostructureSnapshots() = default;
+  //! Collective over the material's communicator: write `point`'s microstructure as
+  //! PREFIX_{grains,contacts,cell}.vtk.
+  virtual void write_snapshot(std::size_t point, const std::string& prefix) = 0;
+};
+
+//! `material`'s snapshots, null when its points have no microstructure to draw.
+inline MicrostructureSnapshots* snapshots_of(Material& material) {
+  return dynamic_cast<MicrostructureSnapshots*>(&material);
+}
+inline bool has_snapshots(const Material& material) {
+  return dynamic_cast<const MicrostructureSnapshots*>(&material) != nullptr;
+}
+
 //! Creates a material from its case node (`materials[i]`); the node's "type" picks the entry.
-using MaterialRegistry = Registry<Material, const CaseNode&>;
+//! A family whose materials report statistics registers them here at their zero values, so
+//! that every run's summary holds them, a run without such a material too.
+class MaterialRegistry : public Registry<Material, const CaseNode&> {
+ public:
+  void add_statistics(const Report& zero) {
+    statistics_.values.insert(statistics_.values.end(), zero.values.begin(), zero.values.end());
+    statistics_.derived.insert(statistics_.derived.end(), zero.derived.begin(), zero.derived.end());
+  }
+  //! Every registered family's statistics at their zero values.
+  const Report& statistics() const { return statistics_; }
+
+ private:
+  Report statistics_;
+};
 
 //! The continuum materials shipped with mpm_lig.
 void register_materials(MaterialRegistry& registry);

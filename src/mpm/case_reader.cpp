@@ -174,6 +174,7 @@ void read_mesh(const CaseNode& m, MpmCase& c) {
 
 void read_materials(const CaseNode& root, const materials::MaterialRegistry& registry, MpmCase& c,
                     MaterialSet& materials) {
+  materials.set_zero_statistics(registry.statistics());
   const auto nodes = root.children("materials");
   if (nodes.empty())
     root.fail("materials", "needs at least one material");
@@ -469,7 +470,8 @@ void read_rve_snapshots(const CaseNode& o, MpmCase& c, const MaterialSet& materi
       s.fail(key, "expected " + std::to_string(c.dimension) + " numbers (a position)");
     const std::vector<double> x = v.get<std::vector<double>>();
     const bool on_dem = std::any_of(c.bodies.begin(), c.bodies.end(), [&](const Body& b) {
-      return materials[b.material]->has_snapshots() && b.box.contains(x.data(), c.dimension, 0.0);
+      return materials::has_snapshots(*materials[b.material]) &&
+             b.box.contains(x.data(), c.dimension, 0.0);
     });
     if (!on_dem)
       s.fail(key, "lies in no body of a dem_rve material");

@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "core/case_error.h"
@@ -211,20 +212,16 @@ bool checkpoint_or_stop(const MpmCase& c, Solver<D>& solver, const Recorder<D>* 
   return stop;
 }
 
-//! Collective: the run's summary (every rank's DEM time gathered for the load balance).
+//! Collective: the run's summary (the materials' statistics gathered over the ranks).
 template <int D>
 void finish_run(const Solver<D>& solver, Recorder<D>* recorder, const MpmCase& c,
                 const RunOptions& options, std::chrono::steady_clock::time_point start) {
-  const double dem_seconds = total_cost(solver.materials()).compute_seconds;
-  int comm_size = 1;
-  MPI_Comm_size(options.comm, &comm_size);
-  std::vector<double> dem_seconds_per_rank(comm_size);
-  MPI_Gather(&dem_seconds, 1, MPI_DOUBLE, dem_seconds_per_rank.data(), 1, MPI_DOUBLE, 0,
-             options.comm);
+  materials::Statistics statistics = solver.materials().statistics();
+  statistics.gather(options.comm);
   if (!recorder)
     return;
   RunTotals totals;
-  totals.dem_seconds_per_rank = dem_seconds_per_rank;
+  totals.statistics = std::move(statistics);
   totals.gravity_stage_steps = c.gravity_stage_steps;
   totals.ranks = options.ranks;
   totals.wall_seconds =

@@ -24,4 +24,12 @@ void MaterialSet::prepare(const std::vector<int>& case_ids, MPI_Comm comm,
   prepared_ = true;
 }
 
+materials::Statistics MaterialSet::statistics() const {
+  materials::Statistics statistics;
+  statistics.add(zero_statistics_);
+  for (const auto& material : materials_)
+    statistics.add(material->report());
+  return statistics;
+}
+
 }  // namespace mpm_lig::mpm

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <mpi.h>
@@ -36,9 +37,15 @@ class MaterialSet {
                const TestHooks& hooks = {});
   bool prepared() const { return prepared_; }
 
+  //! Statistics every run reports, at their zero values (MaterialRegistry::statistics()).
+  void set_zero_statistics(materials::Report zero) { zero_statistics_ = std::move(zero); }
+  //! The zero statistics and every material's report(), merged (this rank's; for summary.json).
+  materials::Statistics statistics() const;
+
  private:
   std::vector<std::unique_ptr<materials::Material>> materials_;
   bool prepared_ = false;
+  materials::Report zero_statistics_;
 };
 
 }  // namespace mpm_lig::mpm

@@ -44,7 +44,7 @@ class MpmAnalysis final : public Analysis {
           "analysis.end.time: the step count (1 ... 1e12), which needs the CFL time "
           "step of the prepared materials");
     for (std::size_t m = 0; m < problem_.materials.size(); ++m) {
-      if (problem_.materials[m]->has_snapshots())
+      if (materials::has_snapshots(*problem_.materials[m]))
         lines.push_back("materials[" + std::to_string(m) +
                         "]: the DEM packings (preparation or restart file contents)");
     }

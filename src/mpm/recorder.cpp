@@ -84,64 +84,6 @@ void append_simple_shear(const Solver<D>& solver, const SimpleShearOutput& shear
 
 }  // namespace
 
-double stepping_efficiency(const materials::SteppingCost& s) {
-  return s.makespan > 0.0 ? s.work / (s.groups * s.makespan) : 1.0;
-}
-
-materials::MaterialCost total_cost(const MaterialSet& materials) {
-  materials::MaterialCost total;
-  for (std::size_t m = 0; m < materials.size(); ++m) {
-    const materials::MaterialCost c = materials[m]->cost();
-    total.simulations += c.simulations;
-    total.particle_steps += c.particle_steps;
-    total.compute_seconds += c.compute_seconds;
-    total.communication_seconds += c.communication_seconds;
-    total.preparation_seconds += c.preparation_seconds;
-    total.particle_steps_at_max += c.particle_steps_at_max;
-    total.particle_steps_low_stress += c.particle_steps_low_stress;
-    total.particle_steps_quiet += c.particle_steps_quiet;
-    if (c.quiet.enabled) {
-      total.quiet.enabled = true;
-      total.quiet.predictions += c.quiet.predictions;
-      total.quiet.updates += c.quiet.updates;
-      total.quiet.checks += c.quiet.checks;
-      total.quiet.error_sum += c.quiet.error_sum;
-      total.quiet.max_error = std::max(total.quiet.max_error, c.quiet.max_error);
-      total.quiet.exceeded += c.quiet.exceeded;
-    }
-    if (c.continuum_start.enabled) {
-      materials::ContinuumStartCost& t = total.continuum_start;
-      t.threshold_scale = t.enabled ? std::min(t.threshold_scale, c.continuum_start.threshold_scale)
-                                    : c.continuum_start.threshold_scale;
-      t.enabled = true;
-      t.continuum_updates += c.continuum_start.continuum_updates;
-      t.switches += c.continuum_start.switches;
-      t.jump_sum += c.continuum_start.jump_sum;
-      t.max_jump = std::max(t.max_jump, c.continuum_start.max_jump);
-      t.jumps_exceeded += c.continuum_start.jumps_exceeded;
-      t.points += static_cast<double>(c.simulations);
-    }
-    if (c.stepping.enabled) {
-      // Materials update one after the other within a step: their works and makespans add.
-      materials::SteppingCost& t = total.stepping;
-      const materials::SteppingCost& one = c.stepping;
-      t.enabled = true;
-      t.groups = std::max(t.groups, one.groups);
-      t.work_predicted += one.work_predicted;
-      t.makespan_predicted += one.makespan_predicted;
-      t.work += one.work;
-      t.makespan += one.makespan;
-      t.bound += one.bound;
-      t.seconds += one.seconds;
-      t.makespan_seconds += one.makespan_seconds;
-      t.migrations += one.migrations;
-      t.rebalances += one.rebalances;
-      t.migration_seconds += one.migration_seconds;
-    }
-  }
-  return total;
-}
-
 template <int D>
 std::vector<std::string> Recorder<D>::history_columns(const MpmCase& c) {
   std::vector<std::string> columns = {"step", "time", "kinetic_energy"};
@@ -201,9 +143,9 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
   history_rows_ = resume->history_rows;
   peak_bearing_pressure_ = resume->peak_bearing_pressure;
   last_step_ = solver.steps();
-  // The restored packings carry the run's particle-steps so far: the first progress line's DEM
-  // rate counts only the steps made after the resume.
-  last_particle_steps_ = total_cost(solver.materials()).particle_steps;
+  // The restored materials carry the run's totals so far: the first progress line's rates
+  // count only what was done after the resume.
+  last_statistics_ = solver.materials().statistics();
 }
 
 template <int D>
@@ -273,102 +215,39 @@ void Recorder<D>::print_progress(const Solver<D>& solver) {
   const double interval = seconds_since(last_);
   const double rate = (solver.steps() - last_step_) / std::max(interval, 1e-9);
   const double eta = (total_steps_ - solver.steps()) / std::max(rate, 1e-9);
-  const materials::MaterialCost cost = total_cost(solver.materials());
-  const double particle_steps = cost.particle_steps;
-  if (particle_steps > 0.0) {
-    // Summed over all ranks: every rank knows every RVE's step count.
-    const double dem_rate = (particle_steps - last_particle_steps_) / std::max(interval, 1e-9);
-    std::printf(
-        "mpm step %ld/%ld  t = %.6g s  %.3g steps/s  DEM %.3g M particle-steps/s  "
-        "stepping efficiency %.3f  ETA %.1f s\n",
-        solver.steps(), total_steps_, solver.time(), rate, dem_rate * 1e-6,
-        stepping_efficiency(cost.stepping), eta);
-  } else {
+  const materials::Statistics statistics = solver.materials().statistics();
+  std::string items;
+  for (const std::string& item : statistics.progress(last_statistics_, std::max(interval, 1e-9)))
+    items += "  " + item;
+  if (!items.empty())
+    std::printf("mpm step %ld/%ld  t = %.6g s  %.3g steps/s%s  ETA %.1f s\n", solver.steps(),
+                total_steps_, solver.time(), rate, items.c_str(), eta);
+  else
     std::printf("mpm step %ld/%ld  t = %.6g s  %.0f steps/s  ETA %.1f s\n", solver.steps(),
                 total_steps_, solver.time(), rate, eta);
-  }
   std::fflush(stdout);
-  last_particle_steps_ = particle_steps;
+  last_statistics_ = statistics;
   last_ = std::chrono::steady_clock::now();
   last_step_ = solver.steps();
 }
 
 template <int D>
 void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
-  const materials::MaterialCost cost = total_cost(solver.materials());
+  materials::Statistics statistics = totals.statistics;
+  statistics.set_wall_seconds(totals.wall_seconds);
   nlohmann::json s;
   s["wall_seconds"] = totals.wall_seconds;
   s["ranks"] = totals.ranks;
   s["build"] = build_id();
-  s["rve_count"] = cost.simulations;
-  s["dem_particle_steps"] = cost.particle_steps;
-  // Rank 0's time: the exchange includes waiting for the slowest rank (load imbalance).
-  const double mpm = totals.wall_seconds - cost.compute_seconds - cost.communication_seconds -
-                     cost.preparation_seconds - output_seconds_;
-  s["time_split"] = {{"dem", cost.compute_seconds},
-                     {"communication", cost.communication_seconds},
-                     {"preparation", cost.preparation_seconds},
-                     {"output", output_seconds_},
-                     {"mpm", mpm}};
-  if (cost.particle_steps > 0.0 && !totals.dem_seconds_per_rank.empty()) {
-    // max / mean of the ranks' DEM time: 1 is perfect balance; the excess is waiting.
-    const auto& per_rank = totals.dem_seconds_per_rank;
-    double sum = 0.0, most = 0.0;
-    for (const double t : per_rank) {
-      sum += t;
-      most = std::max(most, t);
-    }
-    s["dem_seconds_per_rank"] = per_rank;
-    // Of whole-run times: blind to the waiting of each step, which "stepping" shows.
-    s["load_imbalance"] = sum > 0.0 ? most * static_cast<double>(per_rank.size()) / sum : 1.0;
-  }
-  if (cost.stepping.enabled && cost.particle_steps > 0.0) {
-    const materials::SteppingCost& t = cost.stepping;
-    const auto efficiency = [&](double work, double makespan) {
-      return makespan > 0.0 ? work / (t.groups * makespan) : 1.0;
-    };
-    // The mean group's waiting for the busiest one, step by step (from the owners' times).
-    const double waiting = t.makespan_seconds - t.seconds / t.groups;
-    s["stepping"] = {
-        {"rank_groups", t.groups},
-        {"efficiency", stepping_efficiency(t)},
-        {"efficiency_predicted", efficiency(t.work_predicted, t.makespan_predicted)},
-        {"efficiency_seconds", efficiency(t.seconds, t.makespan_seconds)},
-        {"efficiency_bound", efficiency(t.work, t.bound)},
-        {"waiting_seconds", waiting},
-        {"waiting_share", totals.wall_seconds > 0.0 ? waiting / totals.wall_seconds : 0.0},
-        {"migrations", t.migrations},
-        {"rebalances", t.rebalances},
-        {"migration_seconds", t.migration_seconds}};
-  }
-  if (cost.particle_steps > 0.0)
-    s["dem_work_shares"] = {
-        {"at_substeps_max", cost.particle_steps_at_max / cost.particle_steps},
-        {"mean_stress_below_10_percent_of_preparation",
-         cost.particle_steps_low_stress / cost.particle_steps},
-        {"strain_per_step_below_1e-5", cost.particle_steps_quiet / cost.particle_steps}};
-  if (cost.quiet.enabled) {
-    const materials::PredictionCost& q = cost.quiet;
-    s["quiet_points"] = {
-        {"predicted_updates", q.predictions},
-        {"dem_updates", q.updates},
-        {"predicted_share",
-         q.predictions + q.updates > 0.0 ? q.predictions / (q.predictions + q.updates) : 0.0},
-        {"checks", q.checks},
-        {"mean_error", q.checks > 0.0 ? q.error_sum / q.checks : 0.0},
-        {"max_error", q.max_error},
-        {"checks_above_max_error", q.exceeded}};
-  }
-  if (cost.continuum_start.enabled) {
-    const materials::ContinuumStartCost& c = cost.continuum_start;
-    s["start_as_continuum"] = {{"continuum_updates", c.continuum_updates},
-                               {"switched_points", c.switches},
-                               {"continuum_points", c.points - c.switches},
-                               {"mean_jump", c.switches > 0.0 ? c.jump_sum / c.switches : 0.0},
-                               {"max_jump", c.max_jump},
-                               {"jumps_above_max_jump", c.jumps_exceeded},
-                               {"threshold_scale", c.threshold_scale}};
-  }
+  statistics.write(s);
+  // Rank 0's time: the materials' parts of it ("time_split.*" of their statistics; an exchange
+  // includes waiting for the slowest rank), the output's, and the MPM's, the rest.
+  double mpm = totals.wall_seconds;
+  for (const double part : statistics.values_under("time_split."))
+    mpm -= part;
+  mpm -= output_seconds_;
+  s["time_split"]["output"] = output_seconds_;
+  s["time_split"]["mpm"] = mpm;
   s["mpm_steps"] = solver.steps();
   s["gravity_stage_steps"] = totals.gravity_stage_steps;
   s["material_points"] = solver.particles().size();

@@ -17,18 +17,14 @@ struct RunTotals {
   long gravity_stage_steps = 0;
   int ranks = 1;
   double wall_seconds = 0.0;  //!< the whole run, material preparation included
-  //! Each rank's time in its RVEs (rank order; empty without MPI materials' cost).
-  std::vector<double> dem_seconds_per_rank;
+  //! The materials' statistics (MaterialSet::statistics), gathered over the ranks.
+  materials::Statistics statistics;
 };
-
-//! The materials' cost counters added up (DEM RVEs; zero for continuum materials).
-materials::MaterialCost total_cost(const MaterialSet& materials);
-//! Σ work / (groups × Σ_steps busiest group's work) of measured particle-steps (1 without any).
-double stepping_efficiency(const materials::SteppingCost& s);
 
 //! What an MPM run writes into its output folder: history.csv (every `history_every`
 //! steps), results.h5/.xdmf (every `output_every` steps), one progress line per output
-//! interval, and summary.json at the end.
+//! interval, and summary.json at the end. The materials' statistics (materials/statistics.h)
+//! go into the summary and the progress line by their own keys and formats.
 template <int D>
 class Recorder {
  public:
@@ -42,7 +38,7 @@ class Recorder {
 
   //! Called after every main-stage step (and once before the first).
   void after_step(const Solver<D>& solver);
-  //! Write summary.json: run size, wall time and its split (DEM, MPM, communication, ...).
+  //! Write summary.json: run size, wall time and its split, the materials' statistics.
   void finish(const Solver<D>& solver, const RunTotals& totals);
 
   //! Column names of history.csv.
@@ -65,7 +61,7 @@ class Recorder {
   io::CsvHistory history_;
   std::chrono::steady_clock::time_point start_, last_;
   long last_step_ = 0;
-  double last_particle_steps_ = 0.0;
+  materials::Statistics last_statistics_;  //!< at the last progress line (rates since)
   double output_seconds_ = 0.0;
   double peak_bearing_pressure_ = 0.0;
   long history_rows_ = 0;

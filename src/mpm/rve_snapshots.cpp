@@ -24,7 +24,7 @@ std::size_t nearest_dem_point(const Solver<D>& solver, const std::vector<double>
   std::size_t best = p.size();
   double best_distance = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < p.size(); ++k) {
-    if (!solver.materials()[p.material[k]]->has_snapshots())
+    if (!materials::has_snapshots(*solver.materials()[p.material[k]]))
       continue;
     const double distance = (p.reference[k] - target).squaredNorm();
     if (distance < best_distance) {
@@ -64,7 +64,9 @@ void RveSnapshots<D>::write(Solver<D>& solver) {
         std::filesystem::path(directory_) / "snapshots" / numbered("point_%06ld", long(k));
     std::filesystem::create_directories(folder);
     const std::string prefix = (folder / numbered("rve_%06ld", solver.steps())).string();
-    solver.materials()[p.material[k]]->write_snapshot(p.material_point[k], prefix);
+    // Only points of materials with snapshots are chosen (nearest_dem_point).
+    materials::snapshots_of(*solver.materials()[p.material[k]])
+        ->write_snapshot(p.material_point[k], prefix);
   }
 }
 
