@@ -59,9 +59,11 @@ def main():
             log.write(case_path + "\n")
     if os.environ.get("FAKE_MPM_LIG_BLOCK"):
         signal.signal(signal.SIGINT, signal.SIG_DFL)
-        with open(os.environ["FAKE_MPM_LIG_BLOCK"] + ".tmp", "w") as marker:
+        # A temporary of its own: two runs started together must not rename each other's.
+        temporary = f"{os.environ['FAKE_MPM_LIG_BLOCK']}.{os.getpid()}.tmp"
+        with open(temporary, "w") as marker:
             marker.write(f"{os.getpid()}\n")
-        os.replace(os.environ["FAKE_MPM_LIG_BLOCK"] + ".tmp", os.environ["FAKE_MPM_LIG_BLOCK"])
+        os.replace(temporary, os.environ["FAKE_MPM_LIG_BLOCK"])
         time.sleep(120)
         return 3
     rve = case["rve"]
