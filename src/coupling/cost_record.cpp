@@ -99,11 +99,12 @@ void cut_rows(const std::string& file, long last) {
 }  // namespace
 
 CostRecord::CostRecord(std::string file, std::size_t points, double grains,
-                       double update_cost_steps)
+                       double update_cost_steps, double floor_steps)
     : file_(std::move(file)),
       points_(points),
       grains_(grains),
-      update_cost_steps_(update_cost_steps) {}
+      update_cost_steps_(update_cost_steps),
+      floor_steps_(floor_steps) {}
 
 CostRecord::~CostRecord() {
   try {
@@ -125,6 +126,7 @@ void CostRecord::create() {
   create_set(f.get(), "group", H5T_STD_I32LE, points_);
   set_attribute(f.get(), "grains", grains_);
   set_attribute(f.get(), "update_cost_steps", update_cost_steps_);
+  set_attribute(f.get(), "floor_steps", floor_steps_);
   set_attribute(f.get(), "points", static_cast<double>(points_));
 }
 

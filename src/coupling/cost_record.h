@@ -13,11 +13,13 @@ namespace mpm_lig::coupling {
 //! `predicted_steps` and `measured_steps` (DEM steps, 0 when the point ran none: quiet or
 //! continuum), `seconds` (the owner's time in the point's update) and `group` (the rank group
 //! that ran it). Attributes `grains` and `update_cost_steps` turn steps into particle-steps
-//! the way the balancer does: (steps + update_cost_steps) × grains for a point that ran.
+//! the way the balancer does: (steps + update_cost_steps) × grains for a point that ran;
+//! `floor_steps` is the fewest sub-steps an update takes (the part of a cost that persists).
 //! Chunked and compressed; rows are buffered and appended by flush().
 class CostRecord {
  public:
-  CostRecord(std::string file, std::size_t points, double grains, double update_cost_steps);
+  CostRecord(std::string file, std::size_t points, double grains, double update_cost_steps,
+             double floor_steps);
   ~CostRecord();
   CostRecord(const CostRecord&) = delete;
   CostRecord& operator=(const CostRecord&) = delete;
@@ -42,6 +44,7 @@ class CostRecord {
   std::size_t points_;
   double grains_;
   double update_cost_steps_;
+  double floor_steps_;
   std::vector<long long> update_;
   std::vector<int> groups_;
   std::vector<int> predicted_, measured_, group_;

@@ -368,13 +368,26 @@ std::vector<double> DemRveMaterial::work_of(const std::vector<double>& steps,
   return work;
 }
 
+double DemRveMaterial::fewest_substeps() const {
+  return spec_.substeps.fixed > 0 ? spec_.substeps.fixed : spec_.substeps.min;
+}
+
 void DemRveMaterial::rebalance(const std::vector<double>& predicted_work) {
   if (!balance_spec_.enabled || layout_->groups() < 2)
     return;
   // Replicated costs and owners only: every rank plans the same moves, and so does a resume.
-  const BalancePlan plan = plan_moves(predicted_work, layout_->owners(), layout_->groups(),
-                                      balance_spec_.threshold, balance_spec_.horizon,
-                                      balance_spec_.move_cost * static_cast<double>(spec_.grains));
+  // (With rank_speed "measured" the groups' speeds too: the same on every rank, gathered.)
+  // What stays of a point's cost is its update at the fewest sub-steps: the peaks above it
+  // move on with the deformation (balance.persistence).
+  const double floor_work =
+      (fewest_substeps() + balance_spec_.update_cost) * static_cast<double>(spec_.grains);
+  std::vector<double> floor(points_, 0.0);
+  for (std::size_t p = 0; p < points_; ++p)
+    floor[p] = std::min(predicted_work[p], floor_work);
+  const BalancePlan plan = plan_moves(
+      predicted_work, layout_->owners(), layout_->groups(), balance_spec_.threshold,
+      balance_spec_.horizon, balance_spec_.move_cost * static_cast<double>(spec_.grains),
+      speed_ ? speed_->slowness() : std::vector<double>(), floor, balance_spec_.persistence);
   if (plan.moves == 0)
     return;
   migrate(plan.owner);
@@ -434,8 +447,14 @@ void DemRveMaterial::account(const std::vector<double>& predicted_steps,
   const std::vector<int>& owners = layout_->owners();
   const int groups = layout_->groups();
   predicted_totals_.add(work_of(predicted_steps, batch_index), owners, groups);
-  work_totals_.add(work_of(substeps_, batch_index), owners, groups);
+  const std::vector<double> work = work_of(substeps_, batch_index);
+  work_totals_.add(work, owners, groups);
   seconds_totals_.add(seconds, owners, groups);
+  if (balance_spec_.measured_speed) {
+    if (!speed_)
+      speed_ = std::make_unique<GroupSpeed>(groups);
+    speed_->observe(work, seconds, owners);
+  }
   if (!record_)
     return;
   record_->add(updates_, groups, predicted_steps, substeps_, seconds, owners);
@@ -446,9 +465,9 @@ void DemRveMaterial::account(const std::vector<double>& predicted_steps,
 void DemRveMaterial::start_cost_record(bool resumed) {
   if (rank_ != 0 || work_dir_.empty())
     return;
-  record_ =
-      std::make_unique<CostRecord>(work_dir_ + "/cost_record.h5", points_,
-                                   static_cast<double>(spec_.grains), balance_spec_.update_cost);
+  record_ = std::make_unique<CostRecord>(work_dir_ + "/cost_record.h5", points_,
+                                         static_cast<double>(spec_.grains),
+                                         balance_spec_.update_cost, fewest_substeps());
   or_end_job(path_ + ": the cost record not started", [&] {
     std::filesystem::create_directories(work_dir_);
     if (resumed)

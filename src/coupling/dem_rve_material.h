@@ -112,6 +112,8 @@ class DemRveMaterial final : public materials::Material, public materials::Micro
   //! The work of the points in particle-steps, an update's fixed cost included.
   std::vector<double> work_of(const std::vector<double>& steps,
                               const std::vector<long>& batch_index) const;
+  //! The sub-steps of an update at the least (substeps.fixed, or substeps.min).
+  double fewest_substeps() const;
   //! Move RVEs to other groups when the predicted costs say it pays (collective).
   void rebalance(const std::vector<double>& predicted_work);
   //! Give every point to `owners[point]`, moving the RVEs that change group (collective).
@@ -148,6 +150,7 @@ class DemRveMaterial final : public materials::Material, public materials::Micro
   ContinuumStartSpec continuum_start_spec_;
   QuietPoints quiet_;  //!< every point's quiet state (all ranks)
   BalanceSpec balance_spec_;
+  std::unique_ptr<GroupSpeed> speed_;  //!< with rank_speed "measured"; not checkpointed (timings)
   std::string work_dir_;
   std::unique_ptr<CostRecord> record_;  //!< rank 0's
   StepTotals predicted_totals_, work_totals_, seconds_totals_;

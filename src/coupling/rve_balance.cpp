@@ -17,6 +17,11 @@ BalanceSpec parse_balance(const CaseNode& node) {
     node.fail("horizon", "must be between 1 and 1000000");
   s.update_cost = node.in_range_or("update_cost", 0.0, 1e6, s.update_cost);
   s.move_cost = node.in_range_or("move_cost", 0.0, 1e9, s.move_cost);
+  s.persistence = node.in_range_or("persistence", 0.0, 1.0, s.persistence);
+  const std::string speed = node.get_or<std::string>("rank_speed", "equal");
+  if (speed != "equal" && speed != "measured")
+    node.fail("rank_speed", "must be \"equal\" or \"measured\", not \"" + speed + "\"");
+  s.measured_speed = speed == "measured";
   return s;
 }
 
@@ -53,15 +58,17 @@ void count_move(std::vector<int>& touched, int was, int now, int sign) {
   touched[static_cast<std::size_t>(now)] += sign;
 }
 
-// The point of group `from` whose cost is closest to half of `diff` (below it), or npos.
+// The point of group `from` whose move evens the two loads best without making `to` the busier
+// (cost × slow_to below `diff`), or npos. Equal speeds: the cost closest to half of `diff`.
 std::size_t point_to_move(const std::vector<std::size_t>& members, const std::vector<double>& cost,
-                          double diff) {
+                          double diff, double slow_from, double slow_to) {
   std::size_t pick = std::string::npos;
   double pick_miss = 0.0;
+  const double even = diff / (slow_from + slow_to);
   for (const std::size_t i : members) {
-    if (cost[i] <= 0.0 || cost[i] >= diff)
+    if (cost[i] <= 0.0 || cost[i] * slow_to >= diff)
       continue;
-    const double miss = std::abs(cost[i] - 0.5 * diff);
+    const double miss = std::abs(cost[i] - even);
     if (pick == std::string::npos || miss < pick_miss) {
       pick = i;
       pick_miss = miss;
@@ -70,22 +77,92 @@ std::size_t point_to_move(const std::vector<std::size_t>& members, const std::ve
   return pick;
 }
 
+// The groups' loads over the horizon: for ρ < 1 one vector per update whose cost still differs
+// from the floor by more than a thousandth of its excess, then the floor for the remaining
+// updates; otherwise the coming update's loads counted `horizon` times.
+class HorizonLoads {
+ public:
+  HorizonLoads(const std::vector<double>& cost, const std::vector<double>& floor,
+               double persistence, int horizon, const std::vector<int>& owner,
+               const std::vector<double>& slow)
+      : cost_(cost), floor_(floor), slow_(slow) {
+    const bool decays = !floor.empty() && persistence < 1.0;
+    int exact = 1;
+    if (decays && persistence > 0.0)
+      exact = static_cast<int>(std::ceil(std::log(1e-3) / std::log(persistence)));
+    exact = std::min(exact, horizon);
+    double factor = 1.0;
+    for (int k = 0; k < exact; ++k, factor *= persistence)
+      share_.push_back(decays ? factor : 1.0);
+    weight_.assign(share_.size(), 1.0);
+    if (!decays) {
+      weight_[0] = static_cast<double>(horizon);
+    } else if (exact < horizon) {
+      share_.push_back(0.0);  // the floor alone
+      weight_.push_back(static_cast<double>(horizon - exact));
+    }
+    for (std::size_t k = 0; k < share_.size(); ++k) {
+      std::vector<double> load(slow.size(), 0.0);
+      for (std::size_t i = 0; i < cost.size(); ++i)
+        load[static_cast<std::size_t>(owner[i])] += point_cost(k, i);
+      for (std::size_t g = 0; g < load.size(); ++g)
+        load[g] *= slow[g];
+      before_.push_back(*std::max_element(load.begin(), load.end()));
+      load_.push_back(std::move(load));
+    }
+  }
+  void move(std::size_t point, std::size_t from, std::size_t to) {
+    for (std::size_t k = 0; k < load_.size(); ++k) {
+      load_[k][from] -= point_cost(k, point) * slow_[from];
+      load_[k][to] += point_cost(k, point) * slow_[to];
+    }
+  }
+  //! Σ over the horizon of (makespan before - makespan now).
+  double gain() const {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < load_.size(); ++k)
+      sum += weight_[k] * (before_[k] - *std::max_element(load_[k].begin(), load_[k].end()));
+    return sum;
+  }
+
+ private:
+  double point_cost(std::size_t k, std::size_t i) const {
+    if (floor_.empty() || share_[k] == 1.0)
+      return cost_[i];
+    return floor_[i] + share_[k] * (cost_[i] - floor_[i]);
+  }
+  const std::vector<double>& cost_;
+  const std::vector<double>& floor_;
+  const std::vector<double>& slow_;
+  std::vector<double> share_, weight_, before_;
+  std::vector<std::vector<double>> load_;
+};
+
 }  // namespace
 
 BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& owner, int groups,
-                       double threshold, int horizon, double move_cost) {
+                       double threshold, int horizon, double move_cost,
+                       const std::vector<double>& slowness, const std::vector<double>& floor,
+                       double persistence) {
   BalancePlan plan;
   plan.owner = owner;
+  const std::vector<double> slow =
+      slowness.empty() ? std::vector<double>(static_cast<std::size_t>(groups), 1.0) : slowness;
   std::vector<double> load = group_loads(cost, owner, groups);
   const double total = std::accumulate(load.begin(), load.end(), 0.0);
+  double capacity = 0.0;  // Σ 1/slowness: the groups' combined speed (`groups` when equal)
+  for (std::size_t g = 0; g < load.size(); ++g) {
+    load[g] *= slow[g];  // a group's load is its predicted time from here on
+    capacity += 1.0 / slow[g];
+  }
   plan.makespan_before = plan.makespan_after = load[busiest(load)];
-  if (groups < 2 || total <= 0.0 ||
-      plan.makespan_before <= (1.0 + threshold) * total / static_cast<double>(groups))
+  if (groups < 2 || total <= 0.0 || plan.makespan_before <= (1.0 + threshold) * total / capacity)
     return plan;
   // Each move lowers Σ load² (c < diff), so the loop ends; the cap only bounds the work.
   std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(groups));
   for (std::size_t i = 0; i < cost.size(); ++i)
     members[static_cast<std::size_t>(owner[i])].push_back(i);
+  HorizonLoads future(cost, floor, persistence, horizon, owner, slow);
   std::vector<int> trial = owner;
   std::vector<int> touched(static_cast<std::size_t>(groups), 0);
   std::vector<std::pair<std::size_t, int>> sequence;  // (point, its new group) per move
@@ -93,7 +170,8 @@ BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& 
   double best_value = 0.0;
   for (std::size_t step = 0; step < 2 * cost.size() + 2; ++step) {
     const std::size_t from = busiest(load), to = idlest(load);
-    const std::size_t pick = point_to_move(members[from], cost, load[from] - load[to]);
+    const std::size_t pick =
+        point_to_move(members[from], cost, load[from] - load[to], slow[from], slow[to]);
     if (pick == std::string::npos)
       break;
     count_move(touched, owner[pick], trial[pick], -1);
@@ -103,12 +181,12 @@ BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& 
     left.erase(std::find(left.begin(), left.end(), pick));
     auto& joined = members[to];
     joined.insert(std::lower_bound(joined.begin(), joined.end(), pick), pick);
-    load[from] -= cost[pick];
-    load[to] += cost[pick];
+    load[from] -= cost[pick] * slow[from];
+    load[to] += cost[pick] * slow[to];
+    future.move(pick, from, to);
     sequence.emplace_back(pick, trial[pick]);
     const double makespan = load[busiest(load)];
-    const double value = static_cast<double>(horizon) * (plan.makespan_before - makespan) -
-                         move_cost * busiest_migration(touched);
+    const double value = future.gain() - move_cost * busiest_migration(touched);
     if (value > best_value) {
       best_value = value;
       best_prefix = sequence.size();
@@ -121,6 +199,43 @@ BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& 
   for (std::size_t i = 0; i < owner.size(); ++i)
     plan.moves += plan.owner[i] != owner[i] ? 1 : 0;
   return plan;
+}
+
+void GroupSpeed::observe(const std::vector<double>& work, const std::vector<double>& seconds,
+                         const std::vector<int>& owner) {
+  const int groups = static_cast<int>(seconds_per_work_.size());
+  const std::vector<double> w = group_loads(work, owner, groups);
+  const std::vector<double> t = group_loads(seconds, owner, groups);
+  // A fifth of each new measure: timer noise averages out over a few updates, and a core that
+  // slows down (another job started on it) is followed within about ten.
+  constexpr double kWeight = 0.2;
+  for (std::size_t g = 0; g < w.size(); ++g) {
+    if (w[g] <= 0.0 || t[g] <= 0.0)
+      continue;
+    const double now = t[g] / w[g];
+    double& s = seconds_per_work_[g];
+    s = s > 0.0 ? (1.0 - kWeight) * s + kWeight * now : now;
+  }
+}
+
+std::vector<double> GroupSpeed::slowness() const {
+  double sum = 0.0;
+  int measured = 0;
+  for (const double s : seconds_per_work_) {
+    if (s > 0.0) {
+      sum += s;
+      ++measured;
+    }
+  }
+  std::vector<double> out(seconds_per_work_.size(), 1.0);
+  if (measured == 0)
+    return out;
+  const double mean = sum / measured;
+  for (std::size_t g = 0; g < out.size(); ++g) {
+    if (seconds_per_work_[g] > 0.0)
+      out[g] = seconds_per_work_[g] / mean;
+  }
+  return out;
 }
 
 std::vector<int> lpt_owners(const std::vector<double>& cost, int groups) {

@@ -15,6 +15,12 @@ struct BalanceSpec {
   int horizon = 10;          //!< updates over which a move's predicted gain is counted
   double update_cost = 5.0;  //!< fixed cost of one update besides its DEM steps
   double move_cost = 60.0;   //!< cost of moving one RVE to another group
+  //! Share of a point's cost above its sub-step floor expected to remain one update later
+  //! (the floor itself stays): 1 counts the coming update's gain `horizon` times.
+  double persistence = 0.6;
+  //! "measured": loads weighted by each group's measured seconds per unit of work, so that
+  //! unequal cores get unequal shares; decisions then depend on timings (results do not).
+  bool measured_speed = false;
 };
 
 BalanceSpec parse_balance(const CaseNode& node);
@@ -22,6 +28,21 @@ BalanceSpec parse_balance(const CaseNode& node);
 //! Sum of `cost` over the points each group owns (`owner[i]` the group of point i).
 std::vector<double> group_loads(const std::vector<double>& cost, const std::vector<int>& owner,
                                 int groups);
+
+//! Each rank group's seconds per unit of work, smoothed over updates (`"rank_speed":
+//! "measured"`): the balancer then evens out predicted seconds instead of work.
+class GroupSpeed {
+ public:
+  explicit GroupSpeed(int groups) : seconds_per_work_(static_cast<std::size_t>(groups), 0.0) {}
+  //! One update's measured work and seconds of every point, `owner[i]` the group that ran i.
+  void observe(const std::vector<double>& work, const std::vector<double>& seconds,
+               const std::vector<int>& owner);
+  //! Each group's seconds per work over the groups' mean (1 for a group not measured yet).
+  std::vector<double> slowness() const;
+
+ private:
+  std::vector<double> seconds_per_work_;  //!< 0 until the group has run work
+};
 
 //! New owners for the points, from their predicted costs of the coming update.
 struct BalancePlan {
@@ -37,9 +58,16 @@ struct BalancePlan {
 //! most. The moves run in parallel: their time is `move_cost` × the most moves into or out of
 //! one group, so relieving many busy groups at once costs about as much as relieving one. No moves
 //! when the imbalance max/mean - 1 is at most `threshold`, or when no prefix gains. Deterministic
-//! (ties to the lowest index): every rank plans the same.
+//! (ties to the lowest index): every rank plans the same. With `slowness` (one factor per group,
+//! GroupSpeed) a group's load is its cost × its factor; empty means all groups equal.
+//! With `floor` (each point's cost at its fewest sub-steps, at most its cost) and `persistence`
+//! ρ < 1, update k of the horizon (k = 0 the coming one) costs floor + ρ^k (cost - floor) and a
+//! prefix's gain is the sum over the horizon of the makespan reductions: a move that evens the
+//! coming update by piling points on one group loses once the peaks have passed.
 BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& owner, int groups,
-                       double threshold, int horizon, double move_cost);
+                       double threshold, int horizon, double move_cost,
+                       const std::vector<double>& slowness = {},
+                       const std::vector<double>& floor = {}, double persistence = 1.0);
 
 //! Longest processing time first: points by decreasing cost, each to the least loaded group
 //! (the reference the scaling model compares with; ignores where the points are now).

@@ -11,17 +11,9 @@ exe=$1 case=$2 work=$3
 shift 3
 here=$(dirname "$0")
 tool="/usr/bin/python3 $here/bundle_checkpoint.py"
-compare="/usr/bin/python3 $here/../../tools/compare_outputs.py --results-only"
+. "$here/checkpoint_scenarios.sh"
 rm -rf "$work" && mkdir -p "$work"
-failures=0
-fail() { echo "FAIL [$scenario]: $*"; failures=$((failures + 1)); }
-/usr/bin/python3 - "$case" "$work/case.json" <<'PY'
-import json, sys
-c = json.load(open(sys.argv[1]))
-c.setdefault("output", {})["checkpoint_every"] = 2
-c["analysis"]["end"] = {"steps": 6}
-json.dump(c, open(sys.argv[2], "w"), indent=1)
-PY
+short_case "$case" "$work/case.json"
 "$@" -np 1 "$exe" "$work/case.json" --output "$work/reference" > "$work/reference.log" 2>&1 ||
   { cat "$work/reference.log"; exit 1; }
 for np in 1 2; do
@@ -38,10 +30,7 @@ done
 for pair in "1 1" "2 2" "1 2" "2 1"; do
   written=${pair% *} resumed=${pair#* }
   scenario="written on $written, resumed on $resumed"
-  rm -rf "$work/run" && cp -a "$work/killed$written" "$work/run"
-  "$@" -np $resumed "$exe" "$work/case.json" --resume "$work/run" > "$work/run.log" 2>&1 ||
-    fail "resume failed: $(tail -c 400 "$work/run.log")"
-  $compare "$work/reference" "$work/run" > "$work/compare.log" 2>&1 || fail "$(cat "$work/compare.log")"
+  resume_matches "$work/killed$written" $resumed "$@"
 done
 
 scenario="format 4, resumed on 2"

@@ -7,6 +7,7 @@
 
 using mpm_lig::coupling::BalancePlan;
 using mpm_lig::coupling::group_loads;
+using mpm_lig::coupling::GroupSpeed;
 using mpm_lig::coupling::lpt_owners;
 using mpm_lig::coupling::plan_moves;
 using mpm_lig::coupling::StepTotals;
@@ -32,6 +33,65 @@ TEST(RveBalance, MovesThePointClosestToHalfTheDifference) {
   expected[4] = 1;
   EXPECT_EQ(plan.owner, expected);
   EXPECT_EQ(makespan(cost, plan.owner, 2), plan.makespan_after);
+}
+
+TEST(RveBalance, ASlowerGroupGetsLessWork) {
+  // Work 4 + 2 + 2 on each of two groups, group 1 taking 1.5× as long per unit of work
+  // (factors 0.8 and 1.2): predicted times 6.4 and 9.6. Moving one 2 from group 1 to 0 gives
+  // 8.0 and 7.2; the 4 would make group 0 the busier one (4 × 0.8 is the whole difference).
+  const std::vector<double> cost{4, 4, 2, 2, 2, 2};
+  const std::vector<int> owner{0, 1, 0, 1, 0, 1};
+  const std::vector<double> slow{0.8, 1.2};  // ratio 1.5, mean 1
+  const BalancePlan plan = plan_moves(cost, owner, 2, 0.0, 1, 0.0, slow);
+  EXPECT_DOUBLE_EQ(plan.makespan_before, 9.6);
+  EXPECT_EQ(plan.moves, 1u);
+  const std::vector<double> load = group_loads(cost, plan.owner, 2);
+  EXPECT_EQ(load[0], 10.0);
+  EXPECT_EQ(load[1], 6.0);
+  EXPECT_DOUBLE_EQ(plan.makespan_after, 8.0);
+  // Equal speeds: already balanced, nothing moves; explicit ones plan as the default does.
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 1, 0.0).moves, 0u);
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 1, 0.0, {1.0, 1.0}).moves, 0u);
+  // Within the threshold of the ideal time Σ cost / Σ 1/slowness = 16 / 2.0833 = 7.68: 9.6 is
+  // 25 % above it.
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.24, 1, 0.0, slow).moves, 1u);
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.26, 1, 0.0, slow).moves, 0u);
+}
+
+TEST(RveBalance, APeakThatPassesDoesNotPayForPilingPointsOnOneGroup) {
+  // Group 0: a peak A (cost 10, floor 2) and B (2); group 1: C and D (2 each). Moving B evens
+  // the coming update (12 → 10) but leaves 1 point against 3 once the peak has passed.
+  const std::vector<double> cost{10, 2, 2, 2};
+  const std::vector<double> floor{2, 2, 2, 2};
+  const std::vector<int> owner{0, 0, 1, 1};
+  // Persistence 1: the gain of 2 counts ten times.
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 10, 0.0, {}, floor, 1.0).moves, 1u);
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 10, 0.0).moves, 1u);  // no floor: the same
+  // Persistence 0.6: update k's peak is 2 + 8 × 0.6^k; the gains 2, 2, 0.88, then below zero
+  // (the floor alone: 4 → 6): over 10 updates the move loses, over 3 it gains 4.88.
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 10, 0.0, {}, floor, 0.6).moves, 0u);
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 3, 4.8, {}, floor, 0.6).moves, 1u);
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 3, 4.9, {}, floor, 0.6).moves, 0u);
+  // Persistence 0: the coming update once, then the floor nine times.
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 10, 0.0, {}, floor, 0.0).moves, 0u);
+  EXPECT_EQ(plan_moves(cost, owner, 2, 0.0, 1, 0.0, {}, floor, 0.0).moves, 1u);
+}
+
+TEST(RveBalance, GroupSpeedIsSmoothedSecondsPerWorkOverTheMean) {
+  GroupSpeed speed(3);
+  EXPECT_EQ(speed.slowness(), (std::vector<double>{1.0, 1.0, 1.0}));
+  // Group 0: 2 s for 4 units; group 1: 3 s for 2 units; group 2 ran nothing.
+  const std::vector<int> owner{0, 0, 1, 2};
+  speed.observe({1, 3, 2, 0}, {0.5, 1.5, 3.0, 0.0}, owner);
+  std::vector<double> s = speed.slowness();
+  EXPECT_DOUBLE_EQ(s[0], 0.5 / 1.0);  // 0.5 s per unit over the measured mean (0.5 + 1.5) / 2
+  EXPECT_DOUBLE_EQ(s[1], 1.5 / 1.0);
+  EXPECT_EQ(s[2], 1.0);
+  // A second update with group 0 at 1.5 s per unit: 0.8 × 0.5 + 0.2 × 1.5 = 0.7.
+  speed.observe({1, 1, 0, 0}, {1.5, 1.5, 0.0, 0.0}, owner);
+  s = speed.slowness();
+  EXPECT_DOUBLE_EQ(s[0], 0.7 / 1.1);
+  EXPECT_DOUBLE_EQ(s[1], 1.5 / 1.1);
 }
 
 TEST(RveBalance, MovesOnlyWhenTheGainPaysAndTheImbalanceIsAboveTheThreshold) {

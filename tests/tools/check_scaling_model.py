@@ -3,7 +3,10 @@
 
 Record A: 8 points of constant cost 8, 7, ..., 1 DEM steps (grains 1, no fixed cost), 10 steps.
   2 ranks: round-robin loads 20 | 16 -> efficiency 36 / 40; LPT (8, 5, 4, 1 | 7, 6, 3, 2)
-  18 | 18 -> 1; the balancer moves the 2 (closest to half the difference 4) -> 1.
+  18 | 18 -> 1; the balancer moves the 2 (closest to half the difference 4) -> 1, with
+  --persistence 1 (the costs are constant). With --persistence 0 the costs above the floor
+  (the fewest steps, 1) count for the coming update only: moving the 2 gains 20 - 18 once and
+  loses 5 - 4 on the floor's nine updates after it (3 points against 5): no move, 36 / 40.
   8 ranks: one point each, makespan 8 -> 36 / 64 for all; 16 ranks -> 36 / 128.
 Record B: the textbook LPT case, points 3, 5, 3, 4, 3 on 2 ranks: LPT 10 (optimum 9), bound 9.
 Also: a fixed cost per update is counted, the wall time is makespan / rate + gather, bad
@@ -57,7 +60,7 @@ with tempfile.TemporaryDirectory() as tmp:
     write_record(a, [8, 7, 6, 5, 4, 3, 2, 1], 10)
     out = os.path.join(tmp, "a.json")
     code, text, err = run([a, "--ranks", "2,8,16", "--move-cost", "0", "--threshold", "0",
-                           "--rate", "100", "--json", out,
+                           "--persistence", "1", "--rate", "100", "--json", out,
                            "--plot", os.path.join(tmp, "a.png")])
     expect(code == 0, "record A: exit %d: %s" % (code, err))
     if code == 0:
@@ -75,6 +78,13 @@ with tempfile.TemporaryDirectory() as tmp:
         expect(close(w, 2.0), "A, 2 ranks round-robin wall %s, not 2 s + gather" % w)
         expect(rows[2]["gather_seconds"] > 0, "no gather time at 2 ranks")
         expect(os.path.getsize(os.path.join(tmp, "a.png")) > 1000, "no plot")
+    code, text, err = run([a, "--ranks", "2", "--move-cost", "0", "--threshold", "0",
+                           "--persistence", "0", "--rate", "100", "--json", out])
+    expect(code == 0, "record A, persistence 0: exit %d: %s" % (code, err))
+    if code == 0:
+        row = json.load(open(out))["rows"][0]
+        expect(row["migrations"] == 0, "A, persistence 0: %s moves, not 0" % row["migrations"])
+        expect(close(row["efficiency"]["balancer"], 36 / 40), "A, persistence 0 %s" % row)
     b = os.path.join(tmp, "b.h5")
     write_record(b, [3, 5, 3, 4, 3], 4)
     out = os.path.join(tmp, "b.json")

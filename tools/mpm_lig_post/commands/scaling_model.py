@@ -5,7 +5,8 @@ For each rank count R (one rank per RVE) and each step of the record, the points
 work in particle-steps, (DEM steps + update_cost_steps) x grains, is laid out on R groups:
   round_robin  point i on group i mod R (the dealt start; what runs without the balancer)
   balancer     the run's balancer replayed: moves planned from the predicted costs before each
-               step (src/coupling/rve_balance.cpp, same rule), their cost added to the step
+               step (src/coupling/rve_balance.cpp, same rule: a cost's excess over the sub-step
+               floor kept at --persistence per update), their cost added to the step
   lpt          longest processing time first on the step's own measured costs (a reference)
   bound        max(costliest point, mean load): no assignment does better
 Stepping efficiency = sum work / (R x sum_steps busiest group's work). Wall time per step =
@@ -15,7 +16,7 @@ bench_allgather's JSON (--gather; fitted as a log2(R) + b x bytes) or defaults s
 output.
 
 usage: scaling_model.py RECORD_OR_OUTPUT [--ranks 2,4,...] [--tile K] [--gather FILE]
-       [--rate R] [--threshold T --horizon H --move-cost C] [--update-cost U]
+       [--rate R] [--threshold T --horizon H --move-cost C --persistence P] [--update-cost U]
        [--json FILE] [--plot FILE]
 --tile K repeats every point K times in a row (neighbours of the same cost, as in a K times
 finer numbering of the same field): a crude stand-in for a larger case.
@@ -51,10 +52,16 @@ def read_record(path):
                  ("predicted_steps", "measured_steps", "seconds", "group", "groups")}
             r["grains"] = float(f.attrs["grains"])
             r["update_cost_steps"] = float(f.attrs["update_cost_steps"])
+            # Records before the attribute: the fewest sub-steps any update took.
+            r["floor_steps"] = (float(f.attrs["floor_steps"]) if "floor_steps" in f.attrs
+                                else None)
     except (OSError, KeyError) as e:
         fail("'%s' is not a cost record: %s" % (path, e))
     if r["measured_steps"].ndim != 2 or r["measured_steps"].shape[0] == 0:
         fail("'%s' holds no rows" % path)
+    if r["floor_steps"] is None:
+        ran = r["measured_steps"][r["measured_steps"] > 0]
+        r["floor_steps"] = float(ran.min()) if ran.size else 0.0
     r["file"] = path
     return r
 
@@ -76,13 +83,35 @@ def busiest_migration(new, owner, groups):
     return int(touched.max())
 
 
-def plan_moves(cost, owner, groups, threshold, horizon, move_cost):
+def horizon_costs(cost, floor, persistence, horizon):
+    """The costs of the horizon's updates and their weights (rve_balance.cpp HorizonLoads):
+    floor + rho^k (cost - floor) while the excess is above a thousandth, then the floor."""
+    if floor is None or persistence >= 1:
+        return cost[None, :], np.array([float(horizon)])
+    exact = 1 if persistence <= 0 else int(math.ceil(math.log(1e-3) / math.log(persistence)))
+    exact = min(exact, horizon)
+    shares, factor = [], 1.0
+    for _ in range(exact):
+        shares.append(factor)
+        factor *= persistence
+    weights = [1.0] * exact
+    if exact < horizon:
+        shares.append(0.0)
+        weights.append(float(horizon - exact))
+    rows = [cost if k == 0 else floor + shares[k] * (cost - floor) for k in range(len(shares))]
+    return np.stack(rows), np.array(weights)
+
+
+def plan_moves(cost, owner, groups, threshold, horizon, move_cost, floor=None, persistence=1.0):
     """The balancer's rule (rve_balance.cpp plan_moves): returns the new owners."""
     load = loads(cost, owner, groups)
     total = load.sum()
     before = load.max()
     if groups < 2 or total <= 0 or before <= (1 + threshold) * total / groups:
         return owner
+    future, weights = horizon_costs(cost, floor, persistence, horizon)
+    future_load = np.stack([loads(row, owner, groups) for row in future])
+    future_before = future_load.max(axis=1)
     members = [list(np.flatnonzero(owner == g)) for g in range(groups)]
     trial = owner.copy()
     touched = np.zeros(groups, dtype=np.int64)
@@ -103,8 +132,11 @@ def plan_moves(cost, owner, groups, threshold, horizon, move_cost):
         bisect.insort(members[dst], pick)
         load[src] -= cost[pick]
         load[dst] += cost[pick]
+        future_load[:, src] -= future[:, pick]
+        future_load[:, dst] += future[:, pick]
         sequence.append((pick, dst))
-        value = horizon * (before - load.max()) - move_cost * touched.max()
+        gain = (weights * (future_before - future_load.max(axis=1))).sum()
+        value = gain - move_cost * touched.max()
         if value > best_value:
             best_value, best_prefix = value, len(sequence)
     best = owner.copy()
@@ -124,7 +156,7 @@ def lpt(cost, groups):
     return owner
 
 
-def project(r, ranks, tile, threshold, horizon, move_cost_steps):
+def project(r, ranks, tile, threshold, horizon, move_cost_steps, persistence=1.0):
     grains, u = r["grains"], r["update_cost_steps"]
     measured = np.repeat(r["measured_steps"].astype(float), tile, axis=1)
     predicted = np.repeat(r["predicted_steps"].astype(float), tile, axis=1)
@@ -133,6 +165,7 @@ def project(r, ranks, tile, threshold, horizon, move_cost_steps):
     pred = work_of(predicted, ran | (predicted > 0), grains, u)
     points = work.shape[1]
     move_cost = move_cost_steps * grains
+    floor = np.minimum(pred, (r["floor_steps"] + u) * grains)
     dealt = np.arange(points) % ranks
     total = work.sum()
     out = {"round_robin": 0.0, "balancer": 0.0, "lpt": 0.0, "bound": 0.0}
@@ -146,7 +179,8 @@ def project(r, ranks, tile, threshold, horizon, move_cost_steps):
         else:
             out["lpt"] += work[s].max()
         previous = owner
-        new = plan_moves(pred[s], owner, ranks, threshold, horizon, move_cost)
+        new = plan_moves(pred[s], owner, ranks, threshold, horizon, move_cost, floor[s],
+                         persistence)
         moved = int(np.count_nonzero(new != owner))
         migrations += moved
         owner = new
@@ -193,6 +227,8 @@ def main():
     p.add_argument("--threshold", type=float, default=0.02)
     p.add_argument("--horizon", type=int, default=10)
     p.add_argument("--move-cost", type=float, default=60.0, help="DEM steps of one RVE")
+    p.add_argument("--persistence", type=float, default=0.6,
+                   help="share of a cost above the sub-step floor left one update later")
     p.add_argument("--update-cost", type=float,
                    help="fixed cost per update in DEM steps (default: the record's)")
     p.add_argument("--json")
@@ -202,6 +238,8 @@ def main():
         ranks = [int(x) for x in a.ranks.split(",")]
     except ValueError:
         fail("--ranks: expected a comma-separated list of integers, got '%s'" % a.ranks)
+    if not 0 <= a.persistence <= 1:
+        fail("--persistence must be in [0, 1]")
     if not ranks or min(ranks) < 1 or a.tile < 1:
         fail("--ranks and --tile must be >= 1")
     r = read_record(a.record)
@@ -230,7 +268,7 @@ def main():
         "moves"))
     for R in ranks:
         eff, makespan, migrations, points = project(r, R, a.tile, a.threshold, a.horizon,
-                                                    a.move_cost)
+                                                    a.move_cost, a.persistence)
         gather = gather_seconds(gm, R, points) * steps
         wall = {k: makespan[k] / rate + gather for k in makespan}
         rows.append({"ranks": R, "points_per_rank": points / R, "efficiency": eff,
@@ -244,7 +282,8 @@ def main():
     print(note)
     result = {"record": r["file"], "tile": a.tile, "rate": rate, "rate_source": rate_source,
               "gather": gm, "threshold": a.threshold, "horizon": a.horizon,
-              "move_cost_steps": a.move_cost, "rows": rows, "bound_takes_over_at": takeover}
+              "move_cost_steps": a.move_cost, "persistence": a.persistence,
+              "floor_steps": r["floor_steps"], "rows": rows, "bound_takes_over_at": takeover}
     if a.json:
         with open(a.json, "w") as f:
             json.dump(result, f, indent=1)
