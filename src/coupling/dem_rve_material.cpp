@@ -381,9 +381,12 @@ void DemRveMaterial::rebalance(const std::vector<double>& predicted_work) {
   // move on with the deformation (balance.persistence).
   const double floor_work =
       (fewest_substeps() + balance_spec_.update_cost) * static_cast<double>(spec_.grains);
-  std::vector<double> floor(points_, 0.0);
-  for (std::size_t p = 0; p < points_; ++p)
-    floor[p] = std::min(predicted_work[p], floor_work);
+  std::vector<double> floor;  // a fixed sub-step count has no peaks
+  if (spec_.substeps.fixed <= 0) {
+    floor.resize(points_);
+    for (std::size_t p = 0; p < points_; ++p)
+      floor[p] = std::min(predicted_work[p], floor_work);
+  }
   const BalancePlan plan = plan_moves(
       predicted_work, layout_->owners(), layout_->groups(), balance_spec_.threshold,
       balance_spec_.horizon, balance_spec_.move_cost * static_cast<double>(spec_.grains),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -18,6 +19,9 @@ BalanceSpec parse_balance(const CaseNode& node) {
   s.update_cost = node.in_range_or("update_cost", 0.0, 1e6, s.update_cost);
   s.move_cost = node.in_range_or("move_cost", 0.0, 1e9, s.move_cost);
   s.persistence = node.in_range_or("persistence", 0.0, 1.0, s.persistence);
+  // Above 0.95 the horizon would need more than 135 rows of loads per plan (peaks that last).
+  if (s.persistence > 0.95 && s.persistence < 1.0)
+    node.fail("persistence", "must be at most 0.95, or 1 (peaks that stay)");
   const std::string speed = node.get_or<std::string>("rank_speed", "equal");
   if (speed != "equal" && speed != "measured")
     node.fail("rank_speed", "must be \"equal\" or \"measured\", not \"" + speed + "\"");
@@ -77,19 +81,52 @@ std::size_t point_to_move(const std::vector<std::size_t>& members, const std::ve
   return pick;
 }
 
-// The groups' loads over the horizon: for ρ < 1 one vector per update whose cost still differs
+// The largest of n values, kept as they change: a change costs log n, the maximum nothing.
+class MaxTree {
+ public:
+  explicit MaxTree(const std::vector<double>& values) : n_(values.size()), node_(2 * n_, 0.0) {
+    std::copy(values.begin(), values.end(), node_.begin() + static_cast<std::ptrdiff_t>(n_));
+    for (std::size_t i = n_ - 1; i >= 1; --i)
+      node_[i] = std::max(node_[2 * i], node_[2 * i + 1]);
+  }
+  void add(std::size_t index, double change) {
+    std::size_t i = index + n_;
+    node_[i] += change;
+    for (i /= 2; i >= 1; i /= 2)
+      node_[i] = std::max(node_[2 * i], node_[2 * i + 1]);
+  }
+  double max() const { return node_[1]; }
+
+ private:
+  std::size_t n_;
+  std::vector<double> node_;  //!< node i holds the larger of 2i and 2i + 1; leaves from n_
+};
+
+// The groups' loads over the horizon: for ρ < 1 one row per update whose cost still differs
 // from the floor by more than a thousandth of its excess, then the floor for the remaining
-// updates; otherwise the coming update's loads counted `horizon` times.
+// updates; otherwise (or when no point is above its floor) the coming update's loads counted
+// `horizon` times.
 class HorizonLoads {
  public:
   HorizonLoads(const std::vector<double>& cost, const std::vector<double>& floor,
                double persistence, int horizon, const std::vector<int>& owner,
                const std::vector<double>& slow)
-      : cost_(cost), floor_(floor), slow_(slow) {
-    const bool decays = !floor.empty() && persistence < 1.0;
+      : cost_(cost), slow_(slow) {
+    bool decays = !floor.empty() && persistence < 1.0;
+    if (decays) {
+      floor_.resize(cost.size());
+      bool peaks = false;
+      for (std::size_t i = 0; i < cost.size(); ++i) {
+        floor_[i] = std::min(floor[i], cost[i]);
+        peaks = peaks || floor_[i] < cost[i];
+      }
+      decays = peaks;
+    }
     int exact = 1;
-    if (decays && persistence > 0.0)
-      exact = static_cast<int>(std::ceil(std::log(1e-3) / std::log(persistence)));
+    if (decays && persistence > 0.0) {
+      const double rows = std::ceil(std::log(1e-3) / std::log(persistence));
+      exact = rows >= static_cast<double>(horizon) ? horizon : static_cast<int>(rows);
+    }
     exact = std::min(exact, horizon);
     double factor = 1.0;
     for (int k = 0; k < exact; ++k, factor *= persistence)
@@ -101,27 +138,29 @@ class HorizonLoads {
       share_.push_back(0.0);  // the floor alone
       weight_.push_back(static_cast<double>(horizon - exact));
     }
+    if (!decays)
+      floor_.clear();
     for (std::size_t k = 0; k < share_.size(); ++k) {
       std::vector<double> load(slow.size(), 0.0);
       for (std::size_t i = 0; i < cost.size(); ++i)
         load[static_cast<std::size_t>(owner[i])] += point_cost(k, i);
       for (std::size_t g = 0; g < load.size(); ++g)
         load[g] *= slow[g];
-      before_.push_back(*std::max_element(load.begin(), load.end()));
-      load_.push_back(std::move(load));
+      rows_.emplace_back(load);
+      before_.push_back(rows_.back().max());
     }
   }
   void move(std::size_t point, std::size_t from, std::size_t to) {
-    for (std::size_t k = 0; k < load_.size(); ++k) {
-      load_[k][from] -= point_cost(k, point) * slow_[from];
-      load_[k][to] += point_cost(k, point) * slow_[to];
+    for (std::size_t k = 0; k < rows_.size(); ++k) {
+      rows_[k].add(from, -point_cost(k, point) * slow_[from]);
+      rows_[k].add(to, point_cost(k, point) * slow_[to]);
     }
   }
   //! Σ over the horizon of (makespan before - makespan now).
   double gain() const {
     double sum = 0.0;
-    for (std::size_t k = 0; k < load_.size(); ++k)
-      sum += weight_[k] * (before_[k] - *std::max_element(load_[k].begin(), load_[k].end()));
+    for (std::size_t k = 0; k < rows_.size(); ++k)
+      sum += weight_[k] * (before_[k] - rows_[k].max());
     return sum;
   }
 
@@ -132,10 +171,10 @@ class HorizonLoads {
     return floor_[i] + share_[k] * (cost_[i] - floor_[i]);
   }
   const std::vector<double>& cost_;
-  const std::vector<double>& floor_;
+  std::vector<double> floor_;  //!< min(floor, cost); empty when nothing decays
   const std::vector<double>& slow_;
   std::vector<double> share_, weight_, before_;
-  std::vector<std::vector<double>> load_;
+  std::vector<MaxTree> rows_;
 };
 
 }  // namespace
@@ -144,6 +183,13 @@ BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& 
                        double threshold, int horizon, double move_cost,
                        const std::vector<double>& slowness, const std::vector<double>& floor,
                        double persistence) {
+  if (owner.size() != cost.size() || (!floor.empty() && floor.size() != cost.size()) ||
+      (!slowness.empty() && slowness.size() != static_cast<std::size_t>(groups)))
+    throw std::invalid_argument("plan_moves: the costs, owners, floors and speeds do not match");
+  for (const double f : slowness) {
+    if (!(f > 0.0) || !std::isfinite(f))
+      throw std::invalid_argument("plan_moves: a group's slowness must be finite and positive");
+  }
   BalancePlan plan;
   plan.owner = owner;
   const std::vector<double> slow =
@@ -158,7 +204,8 @@ BalancePlan plan_moves(const std::vector<double>& cost, const std::vector<int>& 
   plan.makespan_before = plan.makespan_after = load[busiest(load)];
   if (groups < 2 || total <= 0.0 || plan.makespan_before <= (1.0 + threshold) * total / capacity)
     return plan;
-  // Each move lowers Σ load² (c < diff), so the loop ends; the cap only bounds the work.
+  // With equal speeds each move lowers Σ load² (c < diff), so the loop ends; with unequal
+  // ones it need not, and the cap ends it.
   std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(groups));
   for (std::size_t i = 0; i < cost.size(); ++i)
     members[static_cast<std::size_t>(owner[i])].push_back(i);
@@ -210,7 +257,7 @@ void GroupSpeed::observe(const std::vector<double>& work, const std::vector<doub
   // slows down (another job started on it) is followed within about ten.
   constexpr double kWeight = 0.2;
   for (std::size_t g = 0; g < w.size(); ++g) {
-    if (w[g] <= 0.0 || t[g] <= 0.0)
+    if (!(w[g] > 0.0) || !(t[g] > 0.0))  // nothing run, or a timer that read nonsense
       continue;
     const double now = t[g] / w[g];
     double& s = seconds_per_work_[g];

@@ -24,7 +24,8 @@ TOOL = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "too
                     "scaling_model.py")
 
 
-def write_record(path, steps_per_point, rows, update_cost=0.0, grains=1.0, seconds=1e-3):
+def write_record(path, steps_per_point, rows, update_cost=0.0, grains=1.0, seconds=1e-3,
+                 floor_steps=None):
     steps = np.tile(np.asarray(steps_per_point, dtype=np.int32), (rows, 1))
     with h5py.File(path, "w") as f:
         f["update"] = np.arange(1, rows + 1, dtype=np.int64)
@@ -36,6 +37,8 @@ def write_record(path, steps_per_point, rows, update_cost=0.0, grains=1.0, secon
         f.attrs["grains"] = grains
         f.attrs["update_cost_steps"] = update_cost
         f.attrs["points"] = float(steps.shape[1])
+        if floor_steps is not None:
+            f.attrs["floor_steps"] = floor_steps
 
 
 def run(args):
@@ -85,6 +88,21 @@ with tempfile.TemporaryDirectory() as tmp:
         row = json.load(open(out))["rows"][0]
         expect(row["migrations"] == 0, "A, persistence 0: %s moves, not 0" % row["migrations"])
         expect(close(row["efficiency"]["balancer"], 36 / 40), "A, persistence 0 %s" % row)
+    # Record P (test_rve_balance.cpp, APeakThatPasses...): costs 10, 2, 2, 2 dealt to 2 ranks
+    # (12 | 4), floor 2. Persistence 1: the 2 moves (10 | 6), 16 / 20; persistence 0.6: the
+    # move would leave 1 point against 3 once the peak fades, none, 16 / 24.
+    pk = os.path.join(tmp, "p.h5")
+    write_record(pk, [10, 2, 2, 2], 5, floor_steps=2.0)
+    for rho, moves, eff in (("1", 1, 16 / 20), ("0.6", 0, 16 / 24)):
+        code, text, err = run([pk, "--ranks", "2", "--move-cost", "0", "--threshold", "0",
+                               "--persistence", rho, "--rate", "1", "--json", out])
+        expect(code == 0, "record P, persistence %s: exit %d: %s" % (rho, code, err))
+        if code == 0:
+            row = json.load(open(out))["rows"][0]
+            expect(row["migrations"] == moves, "P, persistence %s: %s moves" % (rho, row))
+            expect(close(row["efficiency"]["balancer"], eff), "P, persistence %s %s" % (rho, row))
+    code, text, err = run([pk, "--persistence", "0.97"])
+    expect(code != 0 and "--persistence" in err, "persistence 0.97 accepted: %s" % err)
     b = os.path.join(tmp, "b.h5")
     write_record(b, [3, 5, 3, 4, 3], 4)
     out = os.path.join(tmp, "b.json")

@@ -86,8 +86,9 @@ def busiest_migration(new, owner, groups):
 def horizon_costs(cost, floor, persistence, horizon):
     """The costs of the horizon's updates and their weights (rve_balance.cpp HorizonLoads):
     floor + rho^k (cost - floor) while the excess is above a thousandth, then the floor."""
-    if floor is None or persistence >= 1:
+    if floor is None or persistence >= 1 or not (floor < cost).any():
         return cost[None, :], np.array([float(horizon)])
+    floor = np.minimum(floor, cost)
     exact = 1 if persistence <= 0 else int(math.ceil(math.log(1e-3) / math.log(persistence)))
     exact = min(exact, horizon)
     shares, factor = [], 1.0
@@ -238,8 +239,8 @@ def main():
         ranks = [int(x) for x in a.ranks.split(",")]
     except ValueError:
         fail("--ranks: expected a comma-separated list of integers, got '%s'" % a.ranks)
-    if not 0 <= a.persistence <= 1:
-        fail("--persistence must be in [0, 1]")
+    if not (0 <= a.persistence <= 0.95 or a.persistence == 1):
+        fail("--persistence must be in [0, 0.95], or 1 (as balance.persistence)")
     if not ranks or min(ranks) < 1 or a.tile < 1:
         fail("--ranks and --tile must be >= 1")
     r = read_record(a.record)
