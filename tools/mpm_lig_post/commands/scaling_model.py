@@ -6,7 +6,8 @@ work in particle-steps, (DEM steps + update_cost_steps) x grains, is laid out on
   round_robin  point i on group i mod R (the dealt start; what runs without the balancer)
   balancer     the run's balancer replayed: moves planned from the predicted costs before each
                step (src/coupling/rve_balance.cpp, same rule: a cost's excess over the sub-step
-               floor kept at --persistence per update), their cost added to the step
+               floor kept at --persistence per update), their cost added to the step;
+               equal rank speeds (a run with balance.rank_speed "measured" is not replayed)
   lpt          longest processing time first on the step's own measured costs (a reference)
   bound        max(costliest point, mean load): no assignment does better
 Stepping efficiency = sum work / (R x sum_steps busiest group's work). Wall time per step =
