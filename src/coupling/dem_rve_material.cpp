@@ -378,15 +378,9 @@ void DemRveMaterial::rebalance(const std::vector<double>& predicted_work) {
   // Replicated costs and owners only: every rank plans the same moves, and so does a resume.
   // (With rank_speed "measured" the groups' speeds too: the same on every rank, gathered.)
   // What stays of a point's cost is its update at the fewest sub-steps: the peaks above it
-  // move on with the deformation (balance.persistence).
-  const double floor_work =
-      (fewest_substeps() + balance_spec_.update_cost) * static_cast<double>(spec_.grains);
-  std::vector<double> floor;  // a fixed sub-step count has no peaks
-  if (spec_.substeps.fixed <= 0) {
-    floor.resize(points_);
-    for (std::size_t p = 0; p < points_; ++p)
-      floor[p] = std::min(predicted_work[p], floor_work);
-  }
+  // move on with the deformation (balance.persistence; plan_moves caps it at each cost).
+  const std::vector<double> floor(
+      points_, (fewest_substeps() + balance_spec_.update_cost) * static_cast<double>(spec_.grains));
   const BalancePlan plan = plan_moves(
       predicted_work, layout_->owners(), layout_->groups(), balance_spec_.threshold,
       balance_spec_.horizon, balance_spec_.move_cost * static_cast<double>(spec_.grains),

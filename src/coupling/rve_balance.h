@@ -60,7 +60,7 @@ struct BalancePlan {
 //! when the imbalance max/mean - 1 is at most `threshold`, or when no prefix gains. Deterministic
 //! (ties to the lowest index): every rank plans the same. With `slowness` (one factor per group,
 //! GroupSpeed) a group's load is its cost × its factor; empty means all groups equal.
-//! With `floor` (each point's cost at its fewest sub-steps, at most its cost) and `persistence`
+//! With `floor` (each point's cost at its fewest sub-steps, capped at its cost) and `persistence`
 //! ρ < 1, update k of the horizon (k = 0 the coming one) costs floor + ρ^k (cost - floor) and a
 //! prefix's gain is the sum over the horizon of the makespan reductions: a move that evens the
 //! coming update by piling points on one group loses once the peaks have passed.
