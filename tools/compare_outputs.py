@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Whether two output directories of one case hold the same results, bit for bit. The code is
 mpm_lig_post/commands/compare_outputs.py (installed: mpm-lig-compare-outputs)."""
-from mpm_lig_post.commands.compare_outputs import entry
+from mpm_lig_post import launch
 
 if __name__ == "__main__":
-    entry()
+    launch.command("compare_outputs")

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """How fast a footing run's material points move against the footing, and how many packings carry
 nothing. The code is mpm_lig_post/commands/footing_noise.py (installed: mpm-lig-footing-noise)."""
-from mpm_lig_post.commands.footing_noise import entry
+from mpm_lig_post import launch
 
 if __name__ == "__main__":
-    entry()
+    launch.command("footing_noise")

@@ -1,13 +1,14 @@
 """The tools as a careless user meets them: damaged input files, outputs into folders that do
-not exist, nonsensical numbers, Ctrl-C during a study, a Python without numpy / h5py /
-matplotlib. Every such case must end with exit code 2 (130 for Ctrl-C), one line on stderr
-naming the file or option and no traceback, nothing created; and the study's angles are
-compared by their absolute error in degrees, a quantity the runs never reach said so.
+not exist or cannot be written, nonsensical numbers, Ctrl-C during a study or while a tool
+loads, a Python without numpy / h5py / matplotlib. Every such case must end with exit code 2
+(130 for Ctrl-C), one line on stderr naming the file or option and no traceback, nothing
+created; and the study's angles are compared by their absolute error in degrees, a quantity
+the runs never reach said so.
 
 usage: check_tool_robustness.py CASE WORK_DIR
-  CASE: random_bytes | output_folder | bad_numbers | compare_outputs | compare_runs |
-        compare_cost_column | native_twin_restart | interrupt | missing_packages | package |
-        element_angles
+  CASE: random_bytes | output_folder | bad_numbers | checkout_tools | compare_outputs |
+        compare_runs | compare_cost_column | native_twin_restart | interrupt |
+        interrupt_loading | missing_packages | package | element_angles
 """
 import json
 import math
@@ -26,11 +27,12 @@ FAKE = os.path.join(HERE, "fake_mpm_lig.py")
 import fake_mpm_lig
 import synthetic
 
-ALL_TOOLS = ("accuracy_cost.py", "calibrate_continuum.py", "compare_cost.py",
-             "compare_outputs.py", "cost_projection.py", "footing_intrusion.py",
-             "footing_noise.py", "friction_angle.py", "native_twin.py", "plot_dem_work.py",
-             "plot_element.py", "plot_fields.py", "plot_footing.py", "plot_force_chains.py",
-             "plot_shear.py")
+ALL_TOOLS = sorted(n for n in os.listdir(TOOLS) if n.endswith(".py"))  # every wrapper
+# A folder nobody can write in, root included (os.access says root may).
+READ_ONLY = "/proc"
+# bench_build.py configures and builds the project: in the checks a generator that does not
+# exist stops it at once should it ever get past its input checks.
+NO_BUILD = ("--generator", "none-such")
 
 
 def expect(condition, message):
@@ -38,8 +40,9 @@ def expect(condition, message):
         raise SystemExit(f"FAILED: {message}")
 
 
-def tool(name, *args, env=None, timeout=120):
-    r = subprocess.run([sys.executable, os.path.join(TOOLS, name), *map(str, args)],
+def tool(name, *args, env=None, timeout=120, python=None):
+    r = subprocess.run([*(python or [sys.executable]), os.path.join(TOOLS, name),
+                        *map(str, args)],
                        capture_output=True, text=True, timeout=timeout,
                        env={**os.environ, **(env or {})})
     return r
@@ -116,6 +119,23 @@ def snapshot_run(d):
     return d
 
 
+def cost_record(path):
+    """A balancer's cost record (tools/scaling_model.py reads it): 3 points, 4 updates."""
+    synthetic.write_cost_record(path, [3, 2, 1], 4)
+    return path
+
+
+def direct_dem_run(d):
+    """What tools/direct_dem.py leaves (summary.json, history.csv) for direct_dem_compare.py,
+    loaded to s/B 0.6 (compared with --at 2: no fields needed)."""
+    sB = np.linspace(0.0, 0.6, 31)
+    synthetic.write_history(d, ["s_over_B", "q_over_qs"], np.column_stack([sB, 10 * sB]))
+    write_json(os.path.join(d, "summary.json"), {
+        "grains": 100, "B_over_d": 20, "seed": 11, "speed_factor": 1, "particle_steps": 1e6,
+        "loading_steps": 1000, "core_seconds": 36.0, "wall_seconds": 36.0})
+    return d
+
+
 def study(work, quantities="footing", base=None, **change):
     """fake_mpm_lig's study: a one-at-a-time sweep of I and grains, 3 reference seeds."""
     os.makedirs(work, exist_ok=True)
@@ -185,6 +205,16 @@ def random_bytes(work):
          "--case", os.path.join(f, "case.json"))
     each("footing_intrusion.py", [os.path.join(f, "case.json")], f, "--case",
          os.path.join(f, "case.json"), "-o", os.path.join(work, "intrusion.png"))
+    record = cost_record(os.path.join(work, "cost_record.h5"))
+    r = tool("scaling_model.py", record, "--ranks", 2)
+    expect(r.returncode == 0, f"scaling_model on an intact record: {r.stderr}")
+    each("scaling_model.py", [record], record, "--ranks", 2)
+    dd = direct_dem_run(os.path.join(work, "direct_dem"))
+    compare = (dd, "-o", os.path.join(work, "compare"), "--at", 2)
+    r = tool("direct_dem_compare.py", *compare)
+    expect(r.returncode == 0, f"direct_dem_compare on an intact run: {r.stderr}")
+    each("direct_dem_compare.py", [os.path.join(dd, "summary.json"),
+                                   os.path.join(dd, "history.csv")], *compare)
     s = snapshot_run(os.path.join(work, "snap"))
     each("plot_force_chains.py", [os.path.join(s, "snapshots", "rve_000007_contacts.vtk")], s,
          "-o", os.path.join(work, "chains.png"))
@@ -212,14 +242,21 @@ def random_bytes(work):
 
 
 def output_folder(work):
-    """Outputs into a folder that does not exist (or a path through a file): exit 2 naming the
-    path before any work (nothing printed, nothing created)."""
+    """Outputs into a folder that does not exist, one that cannot be written (or a path
+    through a file): exit 2 naming the path before any work (nothing printed, nothing
+    created)."""
     a, b = element_run(os.path.join(work, "a"), 1e5), element_run(os.path.join(work, "b"), 2e5)
     f = field_run(os.path.join(work, "fields"))
     nowhere = os.path.join(work, "nowhere")
     out = os.path.join(nowhere, "out.json")
     target = target_case(os.path.join(work, "target.json"))
+    record = cost_record(os.path.join(work, "cost_record.h5"))
+    dd = direct_dem_run(os.path.join(work, "direct_dem"))
     for name, args in (
+            ("scaling_model.py", (record, "--json", out)),
+            ("scaling_model.py", (record, "--plot", os.path.join(nowhere, "m.png"))),
+            ("direct_dem_compare.py", (dd, "-o", os.path.join(nowhere, "x"), "--at", 2)),
+            ("bench_build.py", ("--json", out) + NO_BUILD),
             ("calibrate_continuum.py", (a, b, "--json", out)),
             ("friction_angle.py", (a, b, "--json", out)),
             ("compare_cost.py", (a, b, "--json", out)),
@@ -234,8 +271,28 @@ def output_folder(work):
         refused(r, f"{name} into a missing folder", nowhere)
         expect(r.stdout == "", f"{name}: worked before refusing the output: {r.stdout!r}")
         expect(not os.path.exists(nowhere), f"{name}: created {nowhere}")
+    # A folder that cannot be written.
+    for name, args, path in (
+            ("friction_angle.py", (a, b, "--json"), "x.json"),
+            ("plot_fields.py", (f, "-o"), "f.png"),
+            ("scaling_model.py", (record, "--plot"), "m.png"),
+            ("direct_dem_compare.py", (dd, "--at", 2, "-o"), "x"),
+            ("accuracy_cost.py", (study(os.path.join(work, "ro_study")), "--mpm-lig", FAKE,
+                                  "--output"), "study"),
+            ("native_twin.py", (os.path.join(a, "case.json"), "--library-run", a, "--output"),
+             "twin")):
+        path = os.path.join(READ_ONLY, path)
+        r = tool(name, *args, path)
+        refused(r, f"{name} into {READ_ONLY}", path)
+        expect(r.stdout == "", f"{name}: worked before refusing {path}: {r.stdout!r}")
     # An output that is a folder, a picture of a format nobody writes.
     refused(tool("friction_angle.py", a, b, "--json", work), "--json a folder", work, "folder")
+    refused(tool("scaling_model.py", record, "--json", work), "scaling_model --json a folder",
+            work, "folder")
+    refused(tool("direct_dem_compare.py", dd, "-o", work), "direct_dem_compare -o a folder",
+            work, "folder")
+    refused(tool("scaling_model.py", record, "--plot", os.path.join(work, "m.xyz")),
+            "scaling_model picture format", "m.xyz", "format")
     refused(tool("plot_dem_work.py", f, "-o", os.path.join(work, "w.xyz")), "picture format",
             "w.xyz", "format")
     # A study folder or twin folder below a file.
@@ -260,6 +317,8 @@ def bad_numbers(work):
     f = field_run(os.path.join(work, "fields"))
     target = target_case(os.path.join(work, "target.json"))
     path = study(os.path.join(work, "study"))
+    record = cost_record(os.path.join(work, "cost_record.h5"))
+    dd = direct_dem_run(os.path.join(work, "direct_dem"))
     png = os.path.join(work, "x.png")
     before = sorted(os.listdir(work))
     for name, args, option in (
@@ -292,12 +351,50 @@ def bad_numbers(work):
             ("accuracy_cost.py", (path, "--np", -1, "--mpm-lig", FAKE), "--np"),
             ("accuracy_cost.py", (path, "--dpi", 0, "--mpm-lig", FAKE), "--dpi"),
             ("native_twin.py", (os.path.join(a, "case.json"), "--output",
-                                os.path.join(work, "twin"), "--chunk", 0), "--chunk")):
+                                os.path.join(work, "twin"), "--chunk", 0), "--chunk"),
+            ("scaling_model.py", (record, "--persistence", 0.97), "--persistence"),
+            ("scaling_model.py", (record, "--persistence", -0.1), "--persistence"),
+            ("scaling_model.py", (record, "--ranks", 0), "--ranks"),
+            ("scaling_model.py", (record, "--ranks", "2,x"), "--ranks"),
+            ("scaling_model.py", (record, "--tile", 0), "--tile"),
+            ("scaling_model.py", (record, "--rate", 0), "--rate"),
+            ("scaling_model.py", (record, "--horizon", 0), "--horizon"),
+            ("scaling_model.py", (record, "--threshold", "nan"), "--threshold"),
+            ("scaling_model.py", (record, "--move-cost", -1), "--move-cost"),
+            ("scaling_model.py", (record, "--update-cost", "inf"), "--update-cost"),
+            ("direct_dem_compare.py", (dd, "-o", png[:-4], "--dpi", 0), "--dpi"),
+            ("direct_dem_compare.py", (dd, "-o", png[:-4], "--at", "nan"), "--at"),
+            ("bench_build.py", ("--jobs", 0) + NO_BUILD, "--jobs"),
+            ("bench_engine.py", ("--steps", 0, "--json", os.path.join(work, "b.json")),
+             "--steps")):
         refused(tool(name, *args), f"{name} {option}", option)
     expect(sorted(os.listdir(work)) == before, f"files created: {sorted(os.listdir(work))}")
     # A sane value of the same option works (the refusal is the value's).
     r = tool("plot_dem_work.py", f, "-o", png, "--below-strain", "1e-3")
     expect(r.returncode == 0 and "|strain| < 0.001" in r.stdout, f"sane --below-strain: {r.stderr}")
+
+
+def checkout_tools(work):
+    """The checkout's benchmark and test runners refuse bad input before they configure,
+    build or run anything: exit 2 naming the option; bench_build --keep never deletes a
+    folder that is not its own."""
+    keep = os.path.join(work, "precious")
+    os.makedirs(keep)
+    open(os.path.join(keep, "thesis.tex"), "w").close()
+    refused(tool("bench_build.py", "--keep", keep, *NO_BUILD), "bench_build --keep a folder",
+            keep, "not deleted")
+    expect(os.path.exists(os.path.join(keep, "thesis.tex")), "bench_build deleted --keep")
+    refused(tool("bench_build.py", "--resume", *NO_BUILD), "bench_build --resume", "--keep")
+    json_out = ("--json", os.path.join(work, "bench.json"))
+    refused(tool("bench_engine.py", "--engines", "liggghts,gromacs", *json_out),
+            "bench_engine --engines", "--engines", "gromacs")
+    refused(tool("bench_engine.py", "--build", work, "--engines", "liggghts", "--steps", 1,
+                 "--repeats", 1, *json_out), "bench_engine --build", "--build", work)
+    refused(tool("hard_cases.py", os.path.join(work, "no_mpm_lig"), os.path.join(work, "hard")),
+            "hard_cases without mpm_lig", "no_mpm_lig")
+    refused(tool("hard_cases.py", sys.executable, os.path.join(work, "hard"), "--only", "nope"),
+            "hard_cases --only", "--only", "nope")
+    expect(sorted(os.listdir(work)) == ["precious"], f"files created: {os.listdir(work)}")
 
 
 def compare_outputs(work):
@@ -477,20 +574,71 @@ def interrupt(work):
     expect([v["status"] for v in result["variants"]] == ["done"] * 6, "the study finished")
 
 
+def interrupted_when(name, args, ready, env=None):
+    """Start the tool, wait until ready() (at most 30 s), Ctrl-C it: one line, exit 130."""
+    child = subprocess.Popen([sys.executable, os.path.join(TOOLS, name), *map(str, args)],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             env={**os.environ, **(env or {})})
+    deadline = time.monotonic() + 30
+    while not ready() and time.monotonic() < deadline and child.poll() is None:
+        time.sleep(0.01)
+    child.send_signal(signal.SIGINT)
+    try:
+        stdout, stderr = child.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        child.kill()
+        raise SystemExit(f"FAILED: {name} did not stop within 30 s of Ctrl-C")
+    refused(subprocess.CompletedProcess([], child.returncode, stdout, stderr),
+            f"{name}: Ctrl-C", f"{name}: interrupted", code=130)
+
+
+def interrupt_loading(work):
+    """Ctrl-C while a tool loads (numpy, matplotlib: its first quarter second): every tool
+    ends with 'interrupted' on one line and exit 130. Stand-ins for numpy and argparse (the
+    first slow import of every tool) hold the tool there until the signal; numpy's turns it
+    into an ImportError, as numpy's C start-up does (not a missing numpy). And scaling_model
+    Ctrl-C'd while it reads its --gather file (a FIFO nobody writes)."""
+    slow = os.path.join(work, "slow")
+    os.makedirs(os.path.join(slow, "numpy"))
+    stall = ("import os, time\nopen(os.environ['SLOW_IMPORT_MARKER'], 'w').close()\n"
+             "try:\n    time.sleep(60)\nexcept KeyboardInterrupt:\n    lost = True\n")
+    with open(os.path.join(slow, "argparse.py"), "w") as f:
+        f.write(stall + "    raise\n")
+    with open(os.path.join(slow, "numpy", "__init__.py"), "w") as f:
+        f.write(stall + "raise ImportError('PyCapsule_Import could not import module datetime')\n")
+    for name in ALL_TOOLS:
+        marker = os.path.join(work, name + ".loading")
+        interrupted_when(name, ["--help"], lambda: os.path.exists(marker),
+                         env={"PYTHONPATH": slow, "SLOW_IMPORT_MARKER": marker})
+        expect(os.path.exists(marker), f"{name}: never reached a slow import")
+    fifo = os.path.join(work, "gather.json")
+    os.mkfifo(fifo)
+    record = cost_record(os.path.join(work, "cost_record.h5"))
+    start = time.monotonic()
+    interrupted_when("scaling_model.py", [record, "--gather", fifo],
+                     lambda: time.monotonic() > start + 1.0)
+
+
 def missing_packages(work):
-    """A Python whose numpy (or matplotlib) import fails: one line naming the package(s), the
+    """A Python whose numpy (or matplotlib) import fails, and one without its site packages
+    (python3 -S): every tool's --help gives its help or one line naming the package(s), the
     Debian packages and tools/requirements.txt, exit 2; a tool that does not need the missing
-    package still works."""
+    package still works, one that needs it for an option refuses before any work."""
     fake = os.path.join(work, "site")
     for name in ("numpy", "h5py", "matplotlib"):
         os.makedirs(os.path.join(fake, "all", name))
         with open(os.path.join(fake, "all", name, "__init__.py"), "w") as f:
-            f.write(f"raise ImportError('No module named {name!r} (stand-in)')\n")
+            f.write(f'raise ImportError("No module named {name!r} (stand-in)")\n')
     shutil.copytree(os.path.join(fake, "all", "matplotlib"), os.path.join(fake, "mpl",
                                                                           "matplotlib"))
+    bare = [sys.executable, "-S"]  # no site: no Debian or pip packages
     for name in ALL_TOOLS:
-        r = tool(name, "--help", env={"PYTHONPATH": os.path.join(fake, "all")})
-        refused(r, f"{name} without numpy", "numpy", "python3-numpy", "requirements.txt")
+        for python, env, what in ((None, {"PYTHONPATH": os.path.join(fake, "all")},
+                                   "with a numpy that fails"), (bare, None, "python3 -S")):
+            r = tool(name, "--help", env=env, python=python)
+            if r.returncode == 0 and r.stdout.startswith("usage:") and not r.stderr:
+                continue  # a tool that needs none of them
+            refused(r, f"{name} --help {what}", "numpy", "python3-numpy", "requirements.txt")
     requirements = open(os.path.join(TOOLS, "requirements.txt")).read().split()
     for name in ("numpy", "h5py", "matplotlib"):
         expect(name in requirements, f"tools/requirements.txt lacks {name}")
@@ -501,12 +649,22 @@ def missing_packages(work):
     expect("numpy" not in r.stderr.replace("python3-numpy", ""), "numpy named though present")
     r = tool("compare_outputs.py", f, f, env=env)
     expect(r.returncode == 0, f"compare_outputs needs no matplotlib: {r.stderr}")
+    # A direct DEM run draws its pictures after hours of DEM: matplotlib is checked first.
+    refused(tool("direct_dem.py", "--help", env=env), "direct_dem without matplotlib",
+            "matplotlib", "python3-matplotlib")
+    record = cost_record(os.path.join(work, "cost_record.h5"))
+    r = tool("scaling_model.py", record, "--ranks", 2, env=env)
+    expect(r.returncode == 0, f"scaling_model needs no matplotlib without --plot: {r.stderr}")
+    r = tool("scaling_model.py", record, "--plot", os.path.join(work, "m.png"), env=env)
+    refused(r, "scaling_model --plot without matplotlib", "matplotlib")
+    expect(r.stdout == "", f"scaling_model worked before finding matplotlib missing: {r.stdout}")
 
 
 def package(work):
     """pyproject.toml against the tree: its dependencies are requirements.txt's, every command
     names a module of mpm_lig_post.commands with an entry(), every tools/NAME.py is a wrapper
-    of the module of its name (and every module has one), setuptools finds both packages."""
+    of the module of its name (and every module has one) started by launch.command (which
+    covers Ctrl-C while it loads), setuptools finds both packages."""
     import importlib
     import tomllib
 
@@ -523,8 +681,8 @@ def package(work):
     expect(modules == wrappers, f"commands {modules} vs tools/*.py {wrappers}")
     for name in wrappers:
         text = open(os.path.join(TOOLS, name + ".py")).read()
-        expect(f"from mpm_lig_post.commands.{name} import entry" in text and
-               len(text.splitlines()) < 10, f"tools/{name}.py is not a thin wrapper")
+        expect(f'launch.command("{name}"' in text and len(text.splitlines()) < 10,
+               f"tools/{name}.py is not a thin wrapper of launch.command")
     scripts = project["scripts"]
     expect(len(scripts) >= 15, f"only {len(scripts)} commands")
     for command, target in scripts.items():
@@ -601,7 +759,8 @@ if __name__ == "__main__":
     case, work = sys.argv[1], os.path.join(sys.argv[2], sys.argv[1])
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    {f.__name__: f for f in (random_bytes, output_folder, bad_numbers, compare_outputs,
-                             compare_runs, compare_cost_column, native_twin_restart, interrupt,
+    {f.__name__: f for f in (random_bytes, output_folder, bad_numbers, checkout_tools,
+                             compare_outputs, compare_runs, compare_cost_column,
+                             native_twin_restart, interrupt, interrupt_loading,
                              missing_packages, package, element_angles)}[case](work)
     print(f"{case}: ok")

@@ -1,6 +1,7 @@
 """Synthetic run outputs in the formats the mpm_lig writers produce:
 history.csv as src/io/csv_history.cpp (header, %.17g values), legacy VTK as
-src/io/vtk_snapshot.cpp, results.h5 as src/io/field_writer.cpp."""
+src/io/vtk_snapshot.cpp, results.h5 as src/io/field_writer.cpp, a cost record as
+src/coupling/cost_record.cpp (docs/outputs.md)."""
 import os
 
 import numpy as np
@@ -81,3 +82,23 @@ def write_fields(directory, steps):
                     d = g.create_dataset(name, data=values.astype("<f8"))
                     if values.ndim == 2 and values.shape[1] == 6:
                         d.attrs["components"] = np.bytes_("xx yy zz xy xz yz")
+
+
+def write_cost_record(path, steps_per_point, rows, update_cost=0.0, grains=1.0, seconds=1e-3,
+                      floor_steps=None):
+    """`rows` updates of points that each take the same sub-steps every update."""
+    import h5py
+
+    steps = np.tile(np.asarray(steps_per_point, dtype=np.int32), (rows, 1))
+    with h5py.File(path, "w") as f:
+        f["update"] = np.arange(1, rows + 1, dtype=np.int64)
+        f["groups"] = np.ones(rows, dtype=np.int32)
+        f["predicted_steps"] = steps
+        f["measured_steps"] = steps
+        f["seconds"] = np.full(steps.shape, seconds, dtype=np.float32)
+        f["group"] = np.zeros(steps.shape, dtype=np.int32)
+        f.attrs["grains"] = grains
+        f.attrs["update_cost_steps"] = update_cost
+        f.attrs["points"] = float(steps.shape[1])
+        if floor_steps is not None:
+            f.attrs["floor_steps"] = floor_steps

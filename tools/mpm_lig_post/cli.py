@@ -5,14 +5,10 @@ import argparse
 import math
 import os
 import sys
+import tempfile
 
 from .errors import InputError
-
-INTERRUPTED = 130  # 128 + SIGINT, what a shell reports for Ctrl-C
-
-
-def tool_name():
-    return os.path.basename(sys.argv[0]) or "tool"
+from .launch import interrupted, tool_name
 
 
 class ArgumentParser(argparse.ArgumentParser):
@@ -34,7 +30,9 @@ def parser(description, default_png):
     return p
 
 
-def _number(kind, test, wanted):
+def number(kind, test, wanted):
+    """An argparse type: `kind`(text), finite and passing `test`, else a usage error saying
+    that it must be `wanted`."""
     def convert(text):
         try:
             value = kind(text)
@@ -47,14 +45,14 @@ def _number(kind, test, wanted):
     return convert
 
 
-positive = _number(float, lambda x: x > 0, "a finite number > 0")
-non_negative = _number(float, lambda x: x >= 0, "a finite number >= 0")
-finite = _number(float, lambda x: True, "a finite number")
-positive_int = _number(int, lambda x: x > 0, "an integer > 0")
-non_negative_int = _number(int, lambda x: x >= 0, "an integer >= 0")
+positive = number(float, lambda x: x > 0, "a finite number > 0")
+non_negative = number(float, lambda x: x >= 0, "a finite number >= 0")
+finite = number(float, lambda x: True, "a finite number")
+positive_int = number(int, lambda x: x > 0, "an integer > 0")
+non_negative_int = number(int, lambda x: x >= 0, "an integer >= 0")
 # Picture resolution: below 10 nothing is legible, above 2400 a page-sized figure does not fit
 # in memory.
-dpi = _number(int, lambda x: 10 <= x <= 2400, "an integer 10 ... 2400")
+dpi = number(int, lambda x: 10 <= x <= 2400, "an integer 10 ... 2400")
 
 
 def output_dir(args):
@@ -91,9 +89,19 @@ def writable_file(path, what="output"):
         raise InputError(f"{path}: {what} is a folder, not a file")
     if not os.path.isdir(folder):
         raise InputError(f"{path}: cannot write the {what}: folder {folder} does not exist")
-    if not os.access(folder, os.W_OK) or (os.path.exists(path) and not os.access(path, os.W_OK)):
+    if not _can_create_in(folder) or (os.path.exists(path) and not os.access(path, os.W_OK)):
         raise InputError(f"{path}: cannot write the {what}: no permission")
     return path
+
+
+def _can_create_in(folder):
+    """Whether a file can be created in `folder`, tried (and gone at once): os.access trusts
+    the mode bits, which root overrides, while /proc or a read-only mount refuses root too."""
+    try:
+        with tempfile.TemporaryFile(dir=folder):
+            return True
+    except OSError:
+        return False
 
 
 def writable_folder(path, what="output folder"):
@@ -103,7 +111,7 @@ def writable_folder(path, what="output folder"):
     parent = os.path.abspath(path)
     while not os.path.exists(parent):
         parent = os.path.dirname(parent)
-    if not os.path.isdir(parent) or not os.access(parent, os.W_OK):
+    if not os.path.isdir(parent) or not _can_create_in(parent):
         raise InputError(f"{path}: cannot create or write the {what} ({parent} is not a "
                          "writable folder)")
     return path
@@ -129,8 +137,7 @@ def run(main, failures=()):
         print(f"{tool}: error: {e}", file=sys.stderr)
         sys.exit(2)
     except KeyboardInterrupt:
-        print(f"{tool}: interrupted", file=sys.stderr)
-        sys.exit(INTERRUPTED)
+        interrupted()
     except BrokenPipeError:
         # The reader went away: nothing more to say to it. Point stdout at /dev/null so
         # that the interpreter's final flush does not complain.

@@ -3,6 +3,7 @@ without one of them (a virtual environment, a module system) gets one line namin
 missing and how to install it, and exit code 2, instead of an ImportError traceback."""
 import importlib
 import os
+import signal
 import sys
 
 # import name -> Debian package (the pip names are the import names: tools/requirements.txt)
@@ -13,13 +14,36 @@ REQUIREMENTS_TXT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
 
 def missing(packages):
     """The names of `packages` this Python cannot import (any failure counts, not only
-    ImportError: a package built for another Python raises other errors)."""
-    out = []
-    for name in packages:
+    ImportError: a package built for another Python raises other errors). Ctrl-C while they
+    load raises KeyboardInterrupt, also where a package's own start turns it into an
+    ImportError (numpy's C start-up, which loses the interrupt)."""
+    signalled = []
+
+    def note_and_stop(signum, frame):
+        signalled.append(signum)
+        raise KeyboardInterrupt
+
+    # Only where Ctrl-C would interrupt anyway (not in a job started with SIGINT ignored),
+    # and only the main thread may set a handler.
+    watch = signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    if watch:
         try:
-            importlib.import_module(name)
-        except Exception:  # noqa: BLE001 - the reason does not matter to the user, the name does
-            out.append(name)
+            signal.signal(signal.SIGINT, note_and_stop)
+        except ValueError:
+            watch = False
+    out = []
+    try:
+        for name in packages:
+            try:
+                importlib.import_module(name)
+            # Any failure: the reason does not matter to the user, the name does.
+            except Exception:  # noqa: BLE001
+                if signalled:
+                    raise KeyboardInterrupt from None
+                out.append(name)
+    finally:
+        if watch:
+            signal.signal(signal.SIGINT, signal.default_int_handler)
     return out
 
 

@@ -10,7 +10,6 @@ expensive translation units; writes the same as JSON. On a shared machine the wa
 noisy; the CPU times are not, and the expected wall time on P cores is
 max(total CPU / P, critical path).
 """
-import argparse
 import json
 import os
 import resource
@@ -82,10 +81,13 @@ def critical_path(steps, build):
 def main():
     if len(sys.argv) > 2 and sys.argv[1] == "--launch":
         sys.exit(launch(sys.argv[2], sys.argv[3:]))
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    from mpm_lig_post import cli
+    from mpm_lig_post.errors import InputError
+
+    parser = cli.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--target", action="append", help="target(s) to build; default: mpm_lig")
     parser.add_argument("--all", action="store_true", help="build the whole tree (tests too)")
-    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--jobs", type=cli.positive_int, default=2)
     parser.add_argument("--json", help="write the results here")
     parser.add_argument("--keep", help="build in this folder (kept) instead of a temporary one")
     parser.add_argument("--resume", action="store_true",
@@ -98,10 +100,18 @@ def main():
     parser.add_argument("cmake_args", nargs="*", help="extra arguments to cmake (after --)")
     args = parser.parse_args()
     targets = [] if args.all else (args.target or ["mpm_lig"])
-
-    build = args.keep or tempfile.mkdtemp(prefix="mpm_lig_bench_build_")
     if args.resume and not args.keep:
         parser.error("--resume needs --keep")
+    cli.writable_file(args.json, "--json file")
+    if args.keep:
+        cli.writable_folder(args.keep, "--keep folder")
+        # --keep starts afresh by deleting the folder: only a bench build of its own.
+        if (os.path.isdir(args.keep) and os.listdir(args.keep)
+                and not os.path.isfile(os.path.join(args.keep, "steps.jsonl"))):
+            raise InputError(f"--keep {args.keep}: not a bench_build folder (no steps.jsonl): "
+                             "not deleted; give a new or empty folder")
+
+    build = args.keep or tempfile.mkdtemp(prefix="mpm_lig_bench_build_")
     if args.keep and os.path.exists(build) and not args.resume:
         shutil.rmtree(build)
     os.makedirs(build, exist_ok=True)
@@ -166,7 +176,7 @@ def main():
 def entry():
     from mpm_lig_post import cli
 
-    cli.run(main)
+    cli.run(main, failures=subprocess.CalledProcessError)
 
 
 if __name__ == "__main__":

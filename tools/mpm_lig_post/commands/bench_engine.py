@@ -32,6 +32,7 @@ import tempfile
 import time
 
 from mpm_lig_post import checkout, cli
+from mpm_lig_post.errors import InputError
 
 NATIVE = {"liggghts": ["liggghts"], "lammps": ["lmp", "-nocite"]}
 SPACING = 0.01
@@ -123,11 +124,19 @@ def main():
     ap.add_argument("--json", default="bench_engine.json")
     args = ap.parse_args()
     cli.writable_file(args.json, "--json file")
+    engines = args.engines.split(",")
+    unknown = [e for e in engines if e not in NATIVE]
+    if unknown:
+        raise InputError(f"--engines: unknown engine(s) {', '.join(unknown)} (known: "
+                         f"{', '.join(NATIVE)})")
     bench = os.path.abspath(os.path.join(args.build, "bench_engine"))
+    if not os.access(bench, os.X_OK) or os.path.isdir(bench):
+        raise InputError(f"--build {args.build}: no bench_engine program in it (build the "
+                         "project there, or give its build folder)")
     workdir = tempfile.mkdtemp(prefix="bench_engine_")
     grains = len(packing())
     results = []
-    for engine in args.engines.split(","):
+    for engine in engines:
         if not shutil.which(NATIVE[engine][0]):
             print(f"skipping {engine}: no native executable")
             continue
@@ -175,7 +184,7 @@ def main():
 
 def entry():
     """The command: tools/bench_engine.py in a checkout (it needs the checkout's files)."""
-    cli.run(main)
+    cli.run(main, failures=subprocess.CalledProcessError)
 
 
 if __name__ == "__main__":

@@ -15,17 +15,20 @@ every run, the multiscale peak and window means as marks) and PREFIX_fields.png 
 run at s/B = --at beside the --pictures of the multiscale fields), and PREFIX.json.
 Exit 2 on bad input (a folder without a summary, a row not in the table).
 """
-import argparse
-import json
-import os
-import re
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "h5py", "matplotlib")
 
-from mpm_lig_post import checkout, cli, figures
-from mpm_lig_post.errors import InputError
-from mpm_lig_post.fields import FieldFile
-from mpm_lig_post.tables import read_history, read_json
+import json  # noqa: E402
+import os  # noqa: E402
+import re  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import checkout, cli, figures  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.fields import FieldFile  # noqa: E402
+from mpm_lig_post.tables import need, read_history, read_json, require_columns  # noqa: E402
 
 WINDOWS = (("plateau", 0.1, 0.4), ("mean", 0.4, 1.0))
 
@@ -68,10 +71,21 @@ def first_peak(sB, q, drop=0.10):
     return float(best), float(at)
 
 
+SUMMARY_KEYS = ("grains", "B_over_d", "seed", "speed_factor", "particle_steps", "loading_steps",
+                "core_seconds", "wall_seconds")
+
+
 def run_row(directory):
-    summary = read_json(os.path.join(directory, "summary.json"))
-    table = read_history(os.path.join(directory, "history.csv"))
+    path = os.path.join(directory, "summary.json")
+    summary = read_json(path)
+    for key in SUMMARY_KEYS:
+        need(summary, key, path, number=True)
+    path = os.path.join(directory, "history.csv")
+    table = read_history(path)
+    require_columns(table, ("s_over_B", "q_over_qs"), path)
     sB, q = table["s_over_B"], table["q_over_qs"]
+    if len(sB) == 0:
+        raise InputError(f"{path}: no rows")
     row = {"run": directory, "grains": summary["grains"], "B_over_d": summary["B_over_d"],
            "seed": summary["seed"], "speed_factor": summary["speed_factor"],
            "particle_steps": summary["particle_steps"],
@@ -87,27 +101,45 @@ def run_row(directory):
     return row, sB, q
 
 
+def read_picture(path):
+    """A multiscale field picture (--pictures), read before the work."""
+    import matplotlib.image as mpimg
+
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: file not found")
+    try:
+        return mpimg.imread(path)
+    except (OSError, ValueError, SyntaxError) as e:  # Pillow: OSError, a bad PNG: SyntaxError
+        raise InputError(f"{path}: not a picture ({e})") from None
+
+
 def fmt(v, spec=".2f"):
     return "-" if v is None else format(v, spec)
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = cli.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("runs", nargs="+", metavar="RUN_DIR")
     p.add_argument("--multiscale-table", default=checkout.path("docs", "footing_dem_e0187.md"))
     p.add_argument("--rows", nargs="*", default=["DEM, h = B/4, flip 0.99",
                                                  "DEM, h = B/8, flip 0.99"])
-    p.add_argument("--at", type=float, default=0.5, help="s/B of the field comparison")
+    p.add_argument("--at", type=cli.non_negative, default=0.5,
+                   help="s/B of the field comparison")
     p.add_argument("--pictures", nargs="*", default=[], help="multiscale field pictures to set beside")
-    p.add_argument("-o", "--output", default="direct_dem_compare")
-    p.add_argument("--dpi", type=int, default=150)
+    p.add_argument("-o", "--output", metavar="PREFIX", default="direct_dem_compare",
+                   help="writes PREFIX.json, PREFIX_load.png, PREFIX_fields.png")
+    p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
+    if os.path.isdir(a.output) or a.output.endswith(os.sep):
+        raise InputError(f"-o {a.output}: a folder, not a prefix (e.g. "
+                         f"{os.path.join(a.output, 'direct_dem_compare')})")
+    cli.writable_file(a.output + ".json", "-o file")
+    for suffix in ("_load.png", "_fields.png"):
+        cli.picture_file(a.output + suffix)
     for d in a.runs:
         if not os.path.isfile(os.path.join(d, "summary.json")):
             raise InputError(f"{d}: no summary.json (not a direct_dem.py output)")
-    for picture in a.pictures:
-        if not os.path.isfile(picture):
-            raise InputError(f"{picture}: file not found")
+    images = [read_picture(picture) for picture in a.pictures]
     multi = multiscale_rows(a.multiscale_table, a.rows)
     rows, curves = [], []
     for d in a.runs:
@@ -118,11 +150,15 @@ def main():
                     row[f"{key} vs {name}"] = row[key] / m[key] - 1.0
         rows.append(row)
         curves.append((d, sB, q, row))
+    panels = [c for c in curves if c[1][-1] >= a.at - 1e-6]
+    for d, *_ in panels:
+        if not os.path.isfile(os.path.join(d, "results.h5")):
+            raise InputError(f"{d}: no results.h5 for the fields at s/B = {a.at} (see --at)")
     head = (f"{'run':34s} {'grains':>7s} {'B/d':>5s} {'particle-steps':>14s} {'core-h':>7s} "
             f"{'first peak':>12s} {'highest':>12s} {'0.1-0.4':>8s} {'0.4-1.0':>8s}")
     print(head)
     for r in rows:
-        print(f"{os.path.basename(os.path.normpath(r['run'])):34s} {r['grains']:7d} "
+        print(f"{os.path.basename(os.path.normpath(r['run'])):34s} {r['grains']:7.0f} "
               f"{r['B_over_d']:5.0f} {r['particle_steps']:14.3g} {r['core_hours']:7.3f} "
               f"{r['peak']:6.2f} ({r['peak_at']:.2f}) {r['highest']:6.2f} ({r['highest_at']:.2f}) "
               f"{fmt(r['plateau']):>8s} {fmt(r['mean']):>8s}")
@@ -150,11 +186,8 @@ def main():
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=1, frameon=False, fontsize=8)
     figures.save(fig, a.output + "_load.png", a.dpi)
 
-    panels = [c for c in curves if c[1][-1] >= a.at - 1e-6]
     if not panels:
         return
-    import matplotlib.image as mpimg
-
     from mpm_lig_post.commands import plot_fields
 
     n = len(panels) + len(a.pictures)
@@ -172,8 +205,8 @@ def main():
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
         fields.close()
-    for ax, picture in zip(axes[0][len(panels):], a.pictures):
-        ax.imshow(mpimg.imread(picture))
+    for ax, picture, image in zip(axes[0][len(panels):], a.pictures, images):
+        ax.imshow(image)
         ax.set_axis_off()
         ax.set_title(os.path.basename(picture), fontsize=9)
     figures.save(fig, a.output + "_fields.png", a.dpi)

@@ -14,6 +14,7 @@ import subprocess
 import sys
 
 from mpm_lig_post import checkout, cli
+from mpm_lig_post.errors import InputError
 
 HARD = checkout.path("tests", "hard")
 CHECK_MPM = os.path.join(HARD, "check_mpm_hard.py")
@@ -84,12 +85,16 @@ def main():
     ap.add_argument("--only", nargs="*", help="case names (default: all)")
     ap.add_argument("--json", help="write the table as JSON too")
     a = ap.parse_args()
+    if not os.path.isfile(a.mpm_lig) or not os.access(a.mpm_lig, os.X_OK):
+        raise InputError(f"{a.mpm_lig}: not an executable (give the mpm_lig program, e.g. "
+                         "build/mpm_lig)")
     cli.writable_file(a.json, "--json file")
     cli.writable_folder(a.work, "work folder")
     names = [c[0] for c in CASES]
     unknown = [n for n in (a.only or []) if n not in names]
     if unknown:
-        sys.exit("hard_cases.py: unknown case(s) %s; known: %s" % (unknown, ", ".join(names)))
+        raise InputError(f"--only: unknown case(s) {', '.join(unknown)}; known: "
+                         f"{', '.join(names)}")
     os.makedirs(a.work, exist_ok=True)
     results = []
     print("| run | case | criterion | measured margin | passed |\n|---|---|---|---|---|")

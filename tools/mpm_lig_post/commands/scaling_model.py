@@ -22,31 +22,34 @@ usage: scaling_model.py RECORD_OR_OUTPUT [--ranks 2,4,...] [--tile K] [--gather 
 --tile K repeats every point K times in a row (neighbours of the same cost, as in a K times
 finer numbering of the same field): a crude stand-in for a larger case.
 """
-import argparse
-import bisect
-import glob
-import json
-import math
-import os
-import sys
+from mpm_lig_post.requirements import require
 
-import numpy as np
+require("numpy", "h5py")
+
+import bisect  # noqa: E402
+import glob  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import os  # noqa: E402
+
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
 
 DEFAULT_GATHER = {"latency": 5e-6, "per_byte": 1e-9, "source": "assumed (no --gather)"}
 WIDTH_BYTES = 11 * 8  # doubles per point in the exchange
 
 
-def fail(message):
-    sys.exit("scaling_model.py: " + message)
-
-
 def read_record(path):
-    import h5py
     if os.path.isdir(path):
         found = sorted(glob.glob(os.path.join(path, "packings", "m*", "cost_record.h5")))
         if not found:
-            fail("no packings/m*/cost_record.h5 in '%s'" % path)
+            raise InputError(f"{path}: no packings/m*/cost_record.h5 in this folder")
         path = found[0]
+    elif not os.path.isfile(path):
+        raise InputError(f"{path}: no such cost record or output folder")
     try:
         with h5py.File(path, "r") as f:
             r = {k: np.asarray(f[k][()]) for k in
@@ -56,10 +59,13 @@ def read_record(path):
             # Records before the attribute: the fewest sub-steps any update took.
             r["floor_steps"] = (float(f.attrs["floor_steps"]) if "floor_steps" in f.attrs
                                 else None)
-    except (OSError, KeyError) as e:
-        fail("'%s' is not a cost record: %s" % (path, e))
+    except (OSError, KeyError, ValueError, TypeError) as e:
+        raise InputError(f"{path}: not a cost record: {e}") from None
     if r["measured_steps"].ndim != 2 or r["measured_steps"].shape[0] == 0:
-        fail("'%s' holds no rows" % path)
+        raise InputError(f"{path}: the cost record holds no rows")
+    if r["predicted_steps"].shape != r["measured_steps"].shape:
+        raise InputError(f"{path}: predicted_steps {r['predicted_steps'].shape} and "
+                         f"measured_steps {r['measured_steps'].shape} differ in shape")
     if r["floor_steps"] is None:
         ran = r["measured_steps"][r["measured_steps"] > 0]
         r["floor_steps"] = float(ran.min()) if ran.size else 0.0
@@ -197,11 +203,12 @@ def gather_model(path):
     if not path:
         return dict(DEFAULT_GATHER)
     try:
-        rows = [row for row in json.load(open(path))["rows"] if row["ranks"] >= 2]
+        with open(path) as f:
+            rows = [row for row in json.load(f)["rows"] if row["ranks"] >= 2]
     except (OSError, ValueError, KeyError, TypeError) as e:
-        fail("'%s' is not bench_allgather JSON: %s" % (path, e))
+        raise InputError(f"{path}: not bench_allgather JSON: {e}") from None
     if not rows:
-        fail("'%s' has no rows with 2 or more ranks" % path)
+        raise InputError(f"{path}: no rows with 2 or more ranks")
     a = np.array([[math.log2(row["ranks"]), row["points"] * WIDTH_BYTES * (row["ranks"] - 1)
                    / row["ranks"]] for row in rows])
     t = np.array([row["median_seconds"] for row in rows])
@@ -219,46 +226,54 @@ def gather_seconds(model, ranks, points):
             + model["per_byte"] * points * WIDTH_BYTES * (ranks - 1) / ranks)
 
 
+def rank_counts(text):
+    """--ranks: a comma-separated list of rank counts."""
+    return [cli.positive_int(x.strip()) for x in text.split(",")]
+
+
+# As balance.persistence (src/coupling/rve_balance.cpp): above 0.95 a plan would need more
+# than 135 rows of loads; 1 is a peak that stays.
+persistence = cli.number(float, lambda x: 0 <= x <= 0.95 or x == 1, "in [0, 0.95] or 1")
+
+
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("record")
-    p.add_argument("--ranks", default=",".join(str(2 ** k) for k in range(1, 13)))
-    p.add_argument("--tile", type=int, default=1)
-    p.add_argument("--gather")
-    p.add_argument("--rate", type=float)
-    p.add_argument("--threshold", type=float, default=0.02)
-    p.add_argument("--horizon", type=int, default=10)
-    p.add_argument("--move-cost", type=float, default=60.0, help="DEM steps of one RVE")
-    p.add_argument("--persistence", type=float, default=0.6,
+    p = cli.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("record", metavar="RECORD_OR_OUTPUT",
+                   help="a cost_record.h5, or a run's output folder (its first packings/m*)")
+    p.add_argument("--ranks", type=rank_counts, default=[2 ** k for k in range(1, 13)],
+                   help="rank counts, comma-separated (default 2,4,...,4096)")
+    p.add_argument("--tile", type=cli.positive_int, default=1)
+    p.add_argument("--gather", help="bench_allgather's JSON")
+    p.add_argument("--rate", type=cli.positive, help="particle-steps/s per core")
+    p.add_argument("--threshold", type=cli.non_negative, default=0.02)
+    p.add_argument("--horizon", type=cli.positive_int, default=10)
+    p.add_argument("--move-cost", type=cli.non_negative, default=60.0,
+                   help="DEM steps of one RVE")
+    p.add_argument("--persistence", type=persistence, default=0.6,
                    help="share of a cost above the sub-step floor left one update later")
-    p.add_argument("--update-cost", type=float,
+    p.add_argument("--update-cost", type=cli.non_negative,
                    help="fixed cost per update in DEM steps (default: the record's)")
-    p.add_argument("--json")
-    p.add_argument("--plot")
+    p.add_argument("--json", help="write the result to this file")
+    p.add_argument("--plot", help="draw the efficiencies into this picture")
     a = p.parse_args()
-    try:
-        ranks = [int(x) for x in a.ranks.split(",")]
-    except ValueError:
-        fail("--ranks: expected a comma-separated list of integers, got '%s'" % a.ranks)
-    if not (0 <= a.persistence <= 0.95 or a.persistence == 1):
-        fail("--persistence must be in [0, 0.95], or 1 (as balance.persistence)")
-    if not ranks or min(ranks) < 1 or a.tile < 1:
-        fail("--ranks and --tile must be >= 1")
+    cli.writable_file(a.json, "--json file")
+    if a.plot:
+        cli.picture_file(a.plot)
+        require("matplotlib")
+    ranks = a.ranks
+    gm = gather_model(a.gather)
     r = read_record(a.record)
     if a.update_cost is not None:
-        if a.update_cost < 0:
-            fail("--update-cost must be >= 0")
         r["update_cost_steps"] = a.update_cost
     ran = r["measured_steps"] > 0
     measured_work = work_of(r["measured_steps"], ran, r["grains"], r["update_cost_steps"]).sum()
     seconds = float(r["seconds"].astype(float).sum())
-    if a.rate:
+    if a.rate is not None:
         rate, rate_source = a.rate, "given"
     elif seconds > 0:
         rate, rate_source = measured_work / seconds, "the record's measured seconds"
     else:
-        fail("the record has no measured seconds: give --rate")
-    gm = gather_model(a.gather)
+        raise InputError(f"{r['file']}: the record has no measured seconds: give --rate")
     steps = r["measured_steps"].shape[0]
     rows = []
     print("%s: %d steps, %d points x tile %d, rate %.4g particle-steps/s per core (%s)"
@@ -290,10 +305,7 @@ def main():
         with open(a.json, "w") as f:
             json.dump(result, f, indent=1)
     if a.plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6, 4))
+        fig, ax = figures.subplots(figsize=(6, 4))
         for key, label in (("round_robin", "round-robin"), ("balancer", "balancer"),
                            ("lpt", "LPT per step"), ("bound", "bound (costliest point)")):
             ax.plot(ranks, [row["efficiency"][key] for row in rows], marker="o", label=label)
@@ -303,13 +315,12 @@ def main():
         ax.set_ylim(0, 1.02)
         ax.grid(True, alpha=0.3)
         ax.legend()
-        fig.tight_layout()
-        fig.savefig(a.plot, dpi=120)
+        figures.finish(fig, a.plot, 120)
 
 
 def entry():
     """The command: tools/scaling_model.py in a checkout, mpm-lig-scaling-model installed."""
-    main()
+    cli.run(main)
 
 
 if __name__ == "__main__":
