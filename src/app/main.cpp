@@ -165,9 +165,10 @@ std::string run_directory(const CommandLine& cl, std::string& refusal) {
   return fs::path(cl.case_file).stem().string() + "_out";
 }
 
-//! Rank 0 takes the run's folder (creating it for a new run) and checks that a new run loses
-//! no earlier results; every rank learns the outcome. On refusal `refusal` says why and
-//! nothing in the folder was changed (a folder created here is empty and removed again).
+//! Rank 0 takes the run's folder (creating it for a new run) and checks that no name in it
+//! leads out of it and that a new run loses no earlier results; every rank learns the outcome.
+//! On refusal `refusal` says why and nothing in the folder was changed (a folder created here
+//! is empty and removed again).
 std::unique_ptr<mpm_lig::io::RunFolderLock> take_run_folder(const CommandLine& cl,
                                                             const std::string& dir, bool root_rank,
                                                             std::string& refusal) {
@@ -180,6 +181,7 @@ std::unique_ptr<mpm_lig::io::RunFolderLock> take_run_folder(const CommandLine& c
       std::error_code ignored;
       created = !cl.resume_dir && !fs::exists(dir, ignored) && fs::create_directories(dir);
       lock = std::make_unique<mpm_lig::io::RunFolderLock>(dir);
+      mpm_lig::io::check_run_folder(dir);
       const std::string earlier = cl.resume_dir ? "" : mpm_lig::io::earlier_results(dir);
       if (!earlier.empty() && !cl.replace)
         throw mpm_lig::io::RunFolderRefused("the output folder '" + dir +

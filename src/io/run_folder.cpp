@@ -20,6 +20,11 @@ namespace fs = std::filesystem;
 //! What an earlier run leaves: a new run into the folder would overwrite or orphan them.
 constexpr const char* kResults[] = {"summary.json", "history.csv", "results.h5",
                                     "results.xdmf", "snapshots",   "checkpoints/latest"};
+//! The files a run keeps in its folder (beside each, its temporaries `NAME.*`) and its folders
+//! (whatever is in them is the run's): the names check_run_folder() guards.
+constexpr const char* kRunFiles[] = {"summary.json", "history.csv",        "results.h5",
+                                     "results.xdmf", RunFolderLock::kFile, "prepared.restart"};
+constexpr const char* kRunFolders[] = {"checkpoints", "snapshots", "packings"};
 //! What --replace removes: the results and what else a run writes.
 constexpr const char* kRunOutputs[] = {"summary.json",    "history.csv", "results.h5",
                                        "results.xdmf",    "snapshots",   "packings",
@@ -67,7 +72,7 @@ void write_record(int fd, const std::string& file) {
 bool same_file(int fd, const std::string& file) {
   struct stat open_one {
   }, named_one{};
-  return fstat(fd, &open_one) == 0 && stat(file.c_str(), &named_one) == 0 &&
+  return fstat(fd, &open_one) == 0 && lstat(file.c_str(), &named_one) == 0 &&
          open_one.st_dev == named_one.st_dev && open_one.st_ino == named_one.st_ino;
 }
 
@@ -95,13 +100,57 @@ void take_by_record(int fd, const std::string& dir, const std::string& file) {
   write_record(fd, file);
 }
 
+//! What a name of `type` is, for a message.
+const char* kind_of(fs::file_type type) {
+  switch (type) {
+    case fs::file_type::regular:
+      return "a file";
+    case fs::file_type::directory:
+      return "a folder";
+    case fs::file_type::symlink:
+      return "a symbolic link";
+    case fs::file_type::fifo:
+      return "a pipe";
+    case fs::file_type::socket:
+      return "a socket";
+    case fs::file_type::block:
+    case fs::file_type::character:
+      return "a device";
+    default:
+      return "of an unknown kind";
+  }
+}
+
+//! The refusal of `path`, of `type`, where the run keeps `kept`.
+RunFolderRefused misplaced(const fs::path& path, fs::file_type type, const std::string& kept) {
+  return RunFolderRefused("'" + path.string() + "' is " + kind_of(type) + " where mpm_lig keeps " +
+                          kept +
+                          ": a run reads, writes and removes only files and folders in its "
+                          "output folder (nothing was changed; move it away or choose another "
+                          "--output)");
+}
+
+//! Whatever is in the run's folder `folder`, at any depth, is a file or a folder (links are
+//! listed, not followed).
+void check_inside(const fs::path& folder) {
+  for (fs::recursive_directory_iterator it(folder), end; it != end; ++it) {
+    const fs::file_type type = it->symlink_status().type();
+    if (type != fs::file_type::regular && type != fs::file_type::directory)
+      throw misplaced(it->path(), type, "only files and folders");
+  }
+}
+
 }  // namespace
 
 RunFolderLock::RunFolderLock(const std::string& dir) : file_((fs::path(dir) / kFile).string()) {
+  std::error_code missing;
+  const fs::file_type type = fs::symlink_status(file_, missing).type();
+  if (type != fs::file_type::not_found && type != fs::file_type::regular)
+    throw misplaced(file_, type, "a file");
   // A release unlinks the file: one opened just before that is no longer the folder's lock,
   // so the lock taken is checked to be on the file the name still names.
   for (int attempt = 0; attempt < 10; ++attempt) {
-    fd_ = open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    fd_ = open(file_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd_ < 0)
       throw RunFolderRefused("cannot create the lock file '" + file_ +
                              "': " + std::strerror(errno));
@@ -143,6 +192,30 @@ RunFolderLock::~RunFolderLock() {
   close(fd_);
 }
 
+void check_run_folder(const std::string& dir) {
+  std::error_code missing;
+  if (!fs::is_directory(dir, missing))
+    return;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    const fs::file_type type = e.symlink_status().type();
+    for (const char* file : kRunFiles) {
+      const bool temporary = name.rfind(std::string(file) + ".", 0) == 0;
+      // A temporary that is a folder is left for its write to fail: nothing goes through it.
+      const bool fits =
+          type == fs::file_type::regular || (temporary && type == fs::file_type::directory);
+      if ((name == file || temporary) && !fits)
+        throw misplaced(e.path(), type, "a file");
+    }
+    for (const char* folder : kRunFolders) {
+      if (name == folder && type != fs::file_type::directory)
+        throw misplaced(e.path(), type, "a folder");
+      if (name == folder)
+        check_inside(e.path());
+    }
+  }
+}
+
 std::string earlier_results(const std::string& dir) {
   std::error_code ignored;
   for (const char* name : kResults) {
@@ -157,7 +230,7 @@ void remove_run_outputs(const std::string& dir) {
     fs::remove_all(fs::path(dir) / name);
   // Of checkpoints/ only what a run writes there.
   const fs::path root = fs::path(dir) / "checkpoints";
-  if (!fs::is_directory(root))
+  if (!fs::is_directory(fs::symlink_status(root)))
     return;
   for (const fs::directory_entry& e : fs::directory_iterator(root)) {
     const std::string name = e.path().filename().string();

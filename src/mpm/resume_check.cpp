@@ -13,6 +13,7 @@
 #include "io/checkpoint_file.h"
 #include "io/field_index.h"
 #include "io/file_digest.h"
+#include "io/run_folder.h"
 #include "mpm/case_fingerprint.h"
 #include "mpm/checkpoint_folder.h"
 
@@ -185,6 +186,7 @@ std::string bundle_problem(const MpmCase& c, const std::string& folder, MPI_Comm
 
 std::string resume_problem(const MpmCase& c, const std::string& run_dir) {
   try {
+    io::check_run_folder(run_dir);  // a --validate --resume reads without the folder's lock
     const std::string folder = CheckpointFolder::latest(run_dir);
     const std::string damage = io::manifest_problem(folder, CheckpointFolder::kManifest, is_bundle);
     if (!damage.empty())

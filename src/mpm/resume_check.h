@@ -11,6 +11,7 @@ namespace mpm_lig::mpm {
 //! Collective: refuse to resume `run_dir` (ResumeError on every rank, exit 2) when the result
 //! could be wrong or earlier results could be lost. Checked on rank 0, before any file is
 //! touched or any packing made:
+//!  - no name in `run_dir` leads out of it (io::check_run_folder);
 //!  - `checkpoints/latest` names a plain step folder that exists;
 //!  - every file of that checkpoint matches its MANIFEST.sha256 (a bundle: every member
 //!    matches the SHA-256 of the index, checked by all ranks, each a share of the members);

@@ -516,6 +516,117 @@ def _(work):
 
 
 # ---------------------------------------------------------------------------------------------
+# links: names inside the output folder never lead out of it (docs/running.md §3). A symbolic
+# link or special file where the run keeps a file or folder is refused (exit 2, the path
+# named) before anything is read, written or removed; the other run's folder B and the file
+# victim.txt beside the output folder A stay as they were.
+
+def short_run(work, **output):
+    """The free-flight case cut to 20 steps (a fraction of a second) with `output`."""
+    c = case(FREE_FLIGHT)
+    c["analysis"]["end"] = {"steps": 20}
+    c["output"].update(output)
+    return write_case(work, c)
+
+
+def beside(work):
+    """The output folder A, another run's folder B (results and a checkpoint) and victim.txt."""
+    (work / "A").mkdir()
+    step = work / "B/checkpoints/step_4"
+    step.mkdir(parents=True)
+    (step / "MANIFEST.sha256").write_text("B's manifest\n")
+    (work / "B/checkpoints/latest").write_text("step_4\n")
+    (work / "B/history.csv").write_text("B's history\n")
+    (work / "victim.txt").write_text("B's data\n")
+    return work / "A"
+
+
+def untouched(*names):
+    """A check: victim.txt and B's files hold what beside() wrote; `names` were not created."""
+    expected = {"victim.txt": "B's data\n", "B/checkpoints/latest": "step_4\n",
+                "B/checkpoints/step_4/MANIFEST.sha256": "B's manifest\n",
+                "B/history.csv": "B's history\n"}
+
+    def check(work, outcome):
+        for name in list(expected) + list(names):
+            path = work / name
+            text = path.read_bytes().decode(errors="replace") if path.is_file() else None
+            if text != expected.get(name):
+                return f"{name} changed: {text!r}"
+        return ""
+    return check
+
+
+@probe("links", "replace_checkpoints_link", expect=r"A/checkpoints' is a symbolic link",
+       check=untouched())
+def _(work):
+    os.symlink("../B/checkpoints", beside(work) / "checkpoints")
+    return [short_run(work), "--output", "A", "--replace"]
+
+
+@probe("links", "lock_link", expect=r"A/mpm_lig\.lock' is a symbolic link", check=untouched())
+def _(work):
+    os.symlink("../victim.txt", beside(work) / "mpm_lig.lock")
+    return [short_run(work), "--output", "A"]
+
+
+@probe("links", "history_dangling_link", expect=r"A/history\.csv' is a symbolic link",
+       check=untouched("B/new_history.csv"))
+def _(work):
+    os.symlink("../B/new_history.csv", beside(work) / "history.csv")
+    return [short_run(work), "--output", "A"]
+
+
+@probe("links", "results_h5_dangling_link", expect=r"A/results\.h5' is a symbolic link",
+       check=untouched("B/results.h5"))
+def _(work):
+    os.symlink("../B/results.h5", beside(work) / "results.h5")
+    return [short_run(work), "--output", "A"]
+
+
+@probe("links", "summary_temporary_link", expect=r"A/summary\.json\.partial' is a symbolic link",
+       check=untouched())
+def _(work):
+    os.symlink("../victim.txt", beside(work) / "summary.json.partial")
+    return [short_run(work), "--output", "A"]
+
+
+@probe("links", "xdmf_temporary_pipe", expect=r"A/results\.xdmf\.tmp' is a pipe", timeout=10,
+       check=untouched())
+def _(work):
+    os.mkfifo(beside(work) / "results.xdmf.tmp")  # writing it would wait for a reader forever
+    return [short_run(work), "--output", "A"]
+
+
+@probe("links", "resume_latest_link", expect=r"A/checkpoints/latest' is a symbolic link",
+       check=untouched())
+def _(work):
+    (beside(work) / "checkpoints/step_4").mkdir(parents=True)
+    os.symlink("../../B/checkpoints/latest", work / "A/checkpoints/latest")
+    return [short_run(work, checkpoint_every=4), "--resume", "A"]
+
+
+@probe("links", "validate_resume_history_link", expect=r"A/history\.csv' is a symbolic link",
+       check=untouched())
+def _(work):
+    os.symlink("../B/history.csv", beside(work) / "history.csv")
+    return ["--validate", short_run(work, checkpoint_every=4), "--resume", "A"]
+
+
+def results_in(folder):
+    def check(work, outcome):
+        return "" if (work / folder / "summary.json").is_file() else f"no {folder}/summary.json"
+    return check
+
+
+@probe("links", "output_folder_is_a_link", exit=0, check=results_in("real"))
+def _(work):
+    (work / "real").mkdir()
+    os.symlink("real", work / "A")  # the folder named on the command line: the user's choice
+    return [short_run(work), "--output", "A"]
+
+
+# ---------------------------------------------------------------------------------------------
 # writes: a disk that fills up during the run
 
 def can_mount():
