@@ -5,13 +5,20 @@ usage: check_direct_dem.py bad WORK      bad input: exit 2, the key named, nothi
        check_direct_dem.py affine        coarse-grained strain of an affinely deformed packing
        check_direct_dem.py run WORK      a real run of tests/tools/direct_dem_tiny.json (100
                                          discs, to s/B = 0.05) and what it must reproduce
+       check_direct_dem.py resume WORK REFERENCE
+                                         the same run stopped in its preparation (at a
+                                         checkpoint) and in its loading (SIGTERM), resumed: the
+                                         same history bit for bit as REFERENCE (run's); then
+                                         damaged, edited or mismatched checkpoints refused
 """
 import json
 import math
 import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 import numpy as np
 
@@ -29,8 +36,14 @@ def check(condition, message):
         failures.append(message)
 
 
-def run_tool(args):
-    p = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
+# The options of every real run here: checkpoints often enough to stop in each stage.
+RUN = ["--settlement", "0.05", "--snapshots", "0.05", "--fields-every", "0.025",
+       "--checkpoint-steps", "20000"]
+
+
+def run_tool(args, env=None, cwd=None):
+    p = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True,
+                       env=env, cwd=cwd)
     return p.returncode, p.stdout, p.stderr
 
 
@@ -63,6 +76,17 @@ def bad(work):
          "face x+"),
         ("too many grains", TINY, ["--scale", "1000"], "--scale 1000"),
         ("negative speed factor", TINY, ["--speed-factor", "-1"], "--speed-factor"),
+        ("negative seed", TINY, ["--seed", "-1"], "--seed"),
+        ("friction not a number", variant("friction", lambda c: c["materials"][0]["rve"]
+                                          ["contact"].update(friction_deg="x")),
+         [], "materials[0].rve.contact.friction_deg"),
+        ("grains smaller than the block allows", TINY, ["--scale", "1e-3"], "--scale 0.001"),
+        ("tiles that do not divide the scale", TINY, ["--scale", "3", "--tiles", "2"],
+         "--tiles 2"),
+        ("no such engine", TINY, ["--liggghts", "/nonexistent/liggghts"], "--liggghts"),
+        ("settlement past the base", TINY, ["--settlement", "10"], "--settlement"),
+        ("resume of nothing", TINY, ["--resume"], "no such folder"),
+        ("unknown option, one line", TINY, ["--sead", "3"], "unrecognized arguments"),
     ]
     for name, case, extra, key in cases:
         out = os.path.join(work, "out_" + name.replace(" ", "_"))
@@ -70,6 +94,42 @@ def bad(work):
         check(code == 2 and key in stderr and "Traceback" not in stderr,
               f"{name}: exit {code}, stderr names '{key}': {stderr.strip()[:160]}")
         check(not os.path.exists(out), f"{name}: no output folder created")
+        check(len(stderr.strip().splitlines()) == 1, f"{name}: one line on stderr")
+    # an output that is a file, or inside a read-only folder
+    afile = os.path.join(work, "a_file")
+    open(afile, "w").close()
+    code, _, stderr = run_tool([TINY, "--output", afile])
+    check(code == 2 and "is a file" in stderr, f"--output naming a file: exit {code}: "
+          f"{stderr.strip()[:120]}")
+    if os.geteuid() != 0:  # root writes anywhere
+        locked = os.path.join(work, "read_only")
+        os.makedirs(locked)
+        os.chmod(locked, 0o500)
+        code, _, stderr = run_tool([TINY, "--output", os.path.join(locked, "x")])
+        check(code == 2 and "writable" in stderr, f"--output in a read-only folder: exit {code}")
+    # a symbolic link inside an output folder is refused, nothing written through it
+    linked = os.path.join(work, "linked")
+    os.makedirs(linked)
+    elsewhere = os.path.join(work, "elsewhere.csv")
+    open(elsewhere, "w").write("precious\n")
+    os.symlink(elsewhere, os.path.join(linked, "history.csv"))
+    code, _, stderr = run_tool([TINY, "--output", linked])
+    check(code == 2 and "symbolic link" in stderr and open(elsewhere).read() == "precious\n",
+          f"a history.csv link in the folder: exit {code}, target untouched: {stderr.strip()[:120]}")
+    # an engine that hangs or only echoes: exit 3 within the start limit, no engine left
+    for name, body in (("hangs", "sleep 1000"), ("echoes", "cat")):
+        fake = os.path.join(work, f"liggghts_{name}")
+        open(fake, "w").write(f"#!/bin/sh\n{body}\n")
+        os.chmod(fake, 0o755)
+        env = dict(os.environ, MPM_LIG_TEST_ENGINE_START_SECONDS="3")
+        start = time.time()
+        code, _, stderr = run_tool([TINY, "--output", os.path.join(work, "fake_" + name),
+                                    "--liggghts", fake], env=env)
+        check(code == 3 and "liggghts" in stderr and time.time() - start < 30,
+              f"an engine that {name}: exit {code} in {time.time() - start:.0f} s: "
+              f"{stderr.strip()[:120]}")
+        left = subprocess.run(["pgrep", "-f", fake], capture_output=True, text=True).stdout
+        check(not left.strip(), f"an engine that {name}: no process left")
 
 
 def affine():
@@ -108,9 +168,10 @@ def affine():
 
 def real(work):
     shutil.rmtree(work, ignore_errors=True)
+    # a relative --output, from another working folder, with the defaults (seed 11)
+    os.makedirs(work)
     out = os.path.join(work, "tiny")
-    code, stdout, stderr = run_tool([TINY, "--output", out, "--settlement", "0.05", "--seed", "12",
-                                     "--snapshots", "0.05", "--fields-every", "0.025"])
+    code, stdout, stderr = run_tool([TINY, "--output", "tiny"] + RUN, cwd=work)
     check(code == 0, f"the tiny run ends with exit 0 (got {code}; {stderr.strip()[-300:]})")
     if code != 0:
         return
@@ -119,8 +180,9 @@ def real(work):
     s = json.load(open(os.path.join(out, "summary.json")))
     prep = s["preparation"]
     target = rve["preparation"]["target_void_ratio"]
-    check(abs(prep["void_ratio"] - target) <= 0.005,
-          f"void ratio {prep['void_ratio']:.4f} within 0.005 of the case's {target}")
+    tolerance = rve["preparation"]["void_ratio_tolerance"]
+    check(abs(prep["void_ratio"] - target) <= tolerance,
+          f"void ratio {prep['void_ratio']:.4f} within {tolerance} of the case's {target}")
     p = -0.5 * (prep["sxx"] + prep["syy"])
     check(abs(p - 1e5) <= 0.005 * 1e5, f"prepared at p = {p:.0f} Pa (asked 1e5 within 0.5 %)")
     from mpm_lig_post.vtk_legacy import read_polydata
@@ -171,6 +233,118 @@ def real(work):
     check(os.path.isfile(os.path.join(out, "force_chains.png")), "force_chains.png drawn")
 
 
+def resume(work, reference):
+    """Stopped and resumed in each stage: the uninterrupted run's history bit for bit."""
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    out = os.path.join(work, "tiny")
+    code, _, stderr = run_tool([TINY, "--output", out] + RUN + ["--stop-after-minutes", "0.001"])
+    record = json.load(open(os.path.join(out, "checkpoint.json")))
+    check(code == 4 and "--resume" in stderr and record["stage"] == "prepare",
+          f"--stop-after-minutes: exit {code} at a checkpoint of the preparation "
+          f"({record['stage']}): {stderr.strip()[-160:]}")
+    shutil.copytree(out, os.path.join(work, "stopped_in_preparation"))
+    p = subprocess.Popen([sys.executable, TOOL, TINY, "--output", out, "--resume"],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    while p.poll() is None:
+        try:
+            if json.load(open(os.path.join(out, "checkpoint.json")))["stage"] == "load":
+                break
+        except (OSError, ValueError, KeyError):
+            pass
+        time.sleep(0.2)
+    p.send_signal(signal.SIGTERM)
+    _, stderr = p.communicate()
+    check(p.returncode == 4 and "SIGTERM" in stderr and "--resume" in stderr,
+          f"SIGTERM in the loading: exit {p.returncode}: {stderr.strip()[-200:]}")
+    shutil.copytree(out, os.path.join(work, "stopped_in_loading"))
+    code, _, stderr = run_tool([TINY, "--output", out, "--resume"])
+    check(code == 0, f"the resumed run ends with exit 0 ({stderr.strip()[-200:]})")
+    same = open(os.path.join(out, "history.csv"), "rb").read() == \
+        open(os.path.join(reference, "tiny", "history.csv"), "rb").read()
+    check(same, "stopped twice and resumed: history.csv bit-identical to the uninterrupted run's")
+    mine, theirs = (json.load(open(os.path.join(d, "summary.json"))) for d in
+                    (out, os.path.join(reference, "tiny")))
+    check(mine["particle_steps"] == theirs["particle_steps"] and
+          mine["preparation"] == theirs["preparation"],
+          "the same preparation and particle-steps as the uninterrupted run")
+    refused(work)
+
+
+def refused(work):
+    """Checkpoints that are damaged, edited or do not fit the command: exit 2, named, before
+    anything runs, the folder unchanged."""
+    def tamper(stage, change):
+        folder = os.path.join(work, f"tampered_{len(os.listdir(work))}")
+        shutil.copytree(os.path.join(work, "stopped_in_" + stage), folder)
+        change(folder)
+        return folder
+
+    def flip(folder, name):
+        path = os.path.join(folder, name)
+        data = bytearray(open(path, "rb").read())
+        for k in range(16):
+            data[len(data) // 2 + k] ^= 0xFF
+        open(path, "wb").write(data)
+
+    def restart(folder):
+        return json.load(open(os.path.join(folder, "checkpoint.json")))["files"]["restart"]["name"]
+
+    def edit(folder, change):
+        path = os.path.join(folder, "checkpoint.json")
+        record = json.load(open(path))
+        change(record)
+        json.dump(record, open(path, "w"))
+
+    cases = [
+        ("flipped restart bytes", "preparation", lambda f: flip(f, restart(f)), [], ".restart"),
+        ("truncated restart", "preparation", lambda f: os.truncate(os.path.join(f, restart(f)), 100),
+         [], ".restart"),
+        ("another --scale", "preparation", lambda f: None, ["--scale", "1.5"], "--scale"),
+        ("another --seed", "preparation", lambda f: None, ["--seed", "3"], "--seed"),
+        ("another --speed-factor", "loading", lambda f: None, ["--speed-factor", "0.5"],
+         "--speed-factor"),
+        ("an edited stage", "preparation", lambda f: edit(f, lambda r: r.update(stage="load")),
+         [], "checkpoint.json"),
+        ("an empty checkpoint", "preparation",
+         lambda f: open(os.path.join(f, "checkpoint.json"), "w").write("{}"), [], "checkpoint.json"),
+        ("reference.npz missing", "loading", lambda f: os.remove(os.path.join(f, "reference.npz")),
+         [], "reference.npz"),
+        ("history.csv deleted", "loading", lambda f: os.remove(os.path.join(f, "history.csv")),
+         [], "history.csv"),
+        ("history.csv edited", "loading", lambda f: flip(f, "history.csv"), [], "history.csv"),
+    ]
+    for name, stage, change, extra, named in cases:
+        folder = tamper(stage, change)
+        # (the lock file aside: a run takes the lock before it reads the checkpoint)
+        before = {n: os.path.getmtime(os.path.join(folder, n)) for n in os.listdir(folder)
+                  if n != "direct_dem.lock"}
+        start = time.time()
+        code, _, stderr = run_tool([TINY, "--output", folder, "--resume"] + extra)
+        check(code == 2 and named in stderr and "Traceback" not in stderr and
+              time.time() - start < 20, f"resume with {name}: exit {code}, names '{named}': "
+              f"{stderr.strip()[:160]}")
+        after = {n: os.path.getmtime(os.path.join(folder, n)) for n in os.listdir(folder)
+                 if n != "direct_dem.lock"}
+        check(after == before, f"resume with {name}: the folder unchanged")
+    # one run at a time: a second run into a folder being written is refused
+    folder = tamper("preparation", lambda f: None)
+    first = subprocess.Popen([sys.executable, TOOL, TINY, "--output", folder, "--resume"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    lock = os.path.join(folder, "direct_dem.lock")
+    while first.poll() is None and (not os.path.isfile(lock) or
+                                    open(lock).read().strip() != str(first.pid)):
+        time.sleep(0.1)
+    code, _, stderr = run_tool([TINY, "--output", folder, "--resume"])
+    check(code == 2 and "one run at a time" in stderr, f"a second run into a live folder: exit "
+          f"{code}: {stderr.strip()[:120]}")
+    code, _, stderr = run_tool([TINY, "--output", folder])
+    check(code == 2, f"a new run into a live run's folder: exit {code}: {stderr.strip()[:120]}")
+    first.send_signal(signal.SIGHUP)
+    _, err = first.communicate()
+    check(first.returncode == 4 and "SIGHUP" in err, f"SIGHUP: exit {first.returncode}")
+
+
 def main():
     mode = sys.argv[1]
     if mode == "bad":
@@ -179,6 +353,8 @@ def main():
         affine()
     elif mode == "run":
         real(sys.argv[2])
+    elif mode == "resume":
+        resume(sys.argv[2], sys.argv[3])
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)

@@ -6,6 +6,7 @@ import math
 import os
 import shutil
 import subprocess
+import time
 
 from mpm_lig_post.errors import InputError
 
@@ -119,41 +120,94 @@ def executable(name="liggghts"):
     return shutil.which(name) or name
 
 
+class EngineFailed(RuntimeError):
+    """The engine process stopped, reported an ERROR or did not answer in time."""
+
+
+# Seconds a batch of commands may take beyond its DEM work before the engine counts as hung,
+# and the slowest stepping rate (particle-steps per second) that still counts as working: a
+# fiftieth of a core's rate here, so two runs sharing a core on a loaded machine stay inside.
+ANSWER_SECONDS = 120.0
+SLOWEST_RATE = 1e5
+# Seconds the engine has to print its banner; the tests shorten it (an engine that hangs).
+START_SECONDS = float(os.environ.get("MPM_LIG_TEST_ENGINE_START_SECONDS", 60.0))
+
+
+def _die_with_parent():
+    """In the engine's process: end it when the tool dies, even by SIGKILL (Linux prctl)."""
+    try:
+        import ctypes
+        import signal
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+
 class Session:
     """An interactive liggghts process: commands go to its standard input, `send` returns
     the screen lines they printed (each batch ends with a marker the engine prints).
-    Everything the engine prints is also kept in `log`. np > 1 runs it under mpirun."""
+    Everything the engine prints is also kept in `log`. np > 1 runs it under mpirun. The
+    engine runs in its own process group (a Ctrl-C in the terminal reaches the tool, which
+    ends the engine itself) and dies with the tool."""
 
     MARK = "MPM_LIG_BATCH_DONE"
 
     def __init__(self, log, cwd, np=1, binary=None):
-        command = ["stdbuf", "-oL", binary or executable(), "-echo", "none", "-log", "none"]
+        import queue
+        import threading
+
+        binary = binary or executable()
+        command = ["stdbuf", "-oL", binary, "-echo", "none", "-log", "none"]
         if np > 1:
             command = ["mpirun", "-np", str(np)] + command
         self.log = open(log, "a")
+        self.lines = queue.Queue()
         self.proc = subprocess.Popen(command, cwd=cwd, stdin=subprocess.PIPE,
                                      stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                     bufsize=1)
+                                     bufsize=1, start_new_session=True,
+                                     preexec_fn=_die_with_parent)
+        threading.Thread(target=self._read, daemon=True).start()
+        banner = self.send("", seconds=START_SECONDS)
+        if not any("LIGGGHTS" in line for line in banner):
+            self.close()
+            raise EngineFailed(f"{binary} answered without the LIGGGHTS banner: not the liggghts "
+                               "executable")
 
-    def send(self, commands):
-        """Run the commands (a string of lines); the lines they printed. RuntimeError when
-        the engine stops or reports an ERROR."""
+    def _read(self):
+        for line in self.proc.stdout:
+            self.lines.put(line)
+        self.lines.put(None)
+
+    def send(self, commands, work=0.0, seconds=None):
+        """Run the commands (a string of lines); the lines they printed. EngineFailed when the
+        engine stops, reports an ERROR, or takes longer than ANSWER_SECONDS plus `work`
+        particle-steps at SLOWEST_RATE (or `seconds`)."""
+        import queue
+
+        limit = seconds if seconds is not None else ANSWER_SECONDS + work / SLOWEST_RATE
         self.proc.stdin.write(commands.rstrip("\n") + f'\nprint "{self.MARK}"\n')
         self.proc.stdin.flush()
         out = []
+        deadline = time.monotonic() + limit
         while True:
-            line = self.proc.stdout.readline()
-            if not line:
+            try:
+                line = self.lines.get(timeout=max(deadline - time.monotonic(), 0.0))
+            except queue.Empty:
+                self.close(kill=True)
+                raise EngineFailed(f"liggghts did not answer within {limit:.0f} s (hung, or "
+                                   f"not the liggghts executable); last command: "
+                                   f"{commands.strip()[-200:]}") from None
+            if line is None:
                 self.proc.wait()
                 tail = "".join(out[-15:])
-                raise RuntimeError(f"liggghts stopped (exit {self.proc.returncode}); its last "
+                raise EngineFailed(f"liggghts stopped (exit {self.proc.returncode}); its last "
                                    f"lines:\n{tail}")
             self.log.write(line)
             if line.strip() == self.MARK:
                 return out
             if line.startswith("ERROR"):
-                self.close()
-                raise RuntimeError(f"liggghts: {line.strip()} (after: {commands.strip()[-300:]})")
+                self.close(kill=True)
+                raise EngineFailed(f"liggghts: {line.strip()} (after: {commands.strip()[-300:]})")
             out.append(line)
 
     def values(self, tag, expressions):
@@ -162,17 +216,29 @@ class Session:
         for line in self.send(f'print "{tag} {text}"'):
             if line.startswith(tag + " "):
                 return [float(v) for v in line.split()[1:]]
-        raise RuntimeError(f"liggghts printed no {tag} line")
+        raise EngineFailed(f"liggghts printed no {tag} line")
 
-    def close(self):
+    def close(self, kill=False):
+        """End the engine: `quit` and a wait, or at once with `kill`; its whole group."""
+        import signal
+
         if self.proc.poll() is None:
-            try:
-                self.proc.stdin.write("quit\n")
-                self.proc.stdin.flush()
-            except (BrokenPipeError, OSError):
-                pass
-            try:
-                self.proc.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-        self.log.close()
+            if not kill:
+                try:
+                    self.proc.stdin.write("quit\n")
+                    self.proc.stdin.flush()
+                    self.proc.wait(timeout=30)
+                except (BrokenPipeError, OSError, subprocess.TimeoutExpired):
+                    pass
+            if self.proc.poll() is None:
+                try:
+                    os.killpg(self.proc.pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+                self.proc.wait()
+        try:
+            self.proc.stdin.close()
+        except (BrokenPipeError, OSError):
+            pass
+        if not self.log.closed:
+            self.log.close()
