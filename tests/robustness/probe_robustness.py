@@ -61,6 +61,7 @@ class Probe:
     np: int = 0  # > 0: run under mpirun -np
     check: Optional[Callable[[Path, "Outcome"], str]] = None  # extra check, "" when fine
     needs: Optional[Callable[[], str]] = None  # "" when the probe can run here, else why not
+    program: Optional[List[str]] = None  # the command probed instead of the mpm_lig binary
 
 
 @dataclass
@@ -113,10 +114,11 @@ def limit_memory():
     os.setsid()  # the whole process group can be killed at the time limit
 
 
-def run_in(work, binary, args, timeout, np=0):
-    """Run `binary args` in `work`; returns an Outcome (code None after the time limit)."""
+def run_in(work, binary, args, timeout, np=0, program=None):
+    """Run `binary args` (or `program args`) in `work`; returns an Outcome (code None after the
+    time limit)."""
     before = set(os.listdir(work))
-    command = (MPIRUN + ["-np", str(np)] if np else []) + [binary] + args
+    command = (MPIRUN + ["-np", str(np)] if np else []) + (program or [binary]) + args
     start = time.monotonic()
     process = subprocess.Popen(command, cwd=work, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, preexec_fn=limit_memory)
@@ -627,6 +629,113 @@ def _(work):
 
 
 # ---------------------------------------------------------------------------------------------
+# direct_dem: tools/direct_dem.py held to mpm_lig's outcomes (bad input exit 2 before anything is
+# created, an engine that fails or hangs exit 3 at once, no name in its folder followed). Its
+# checkpoint and resume scenarios run a real packing: tests/tools/check_direct_dem.py resume.
+DIRECT_DEM = [sys.executable, str(REPO / "tools/direct_dem.py")]
+DIRECT_DEM_TINY = REPO / "tests/tools/direct_dem_tiny.json"
+# An engine that hangs gives up its start after 3 s here instead of 60.
+DIRECT_DEM_QUICK_START = ["env", "MPM_LIG_TEST_ENGINE_START_SECONDS=3"] + DIRECT_DEM
+
+
+def direct_dem_probe(name, expect, exit=2, program=DIRECT_DEM, **options):
+    return probe("direct_dem", name, expect=expect, exit=exit, program=program, **options)
+
+
+@direct_dem_probe("dd_negative_seed", r"--seed")
+def _(work):
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--seed", "-1"]
+
+
+@direct_dem_probe("dd_friction_not_a_number", r"materials\[0\]\.rve\.contact\.friction_deg")
+def _(work):
+    data = case(DIRECT_DEM_TINY)
+    data["materials"][0]["rve"]["contact"]["friction_deg"] = "x"
+    return [write_case(work, data), "--output", str(work / "out")]
+
+
+@direct_dem_probe("dd_scale_too_small", r"--scale 0\.001")
+def _(work):
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--scale", "1e-3"]
+
+
+@direct_dem_probe("dd_settlement_past_base", r"--settlement 10")
+def _(work):
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--settlement", "10"]
+
+
+@direct_dem_probe("dd_no_such_engine", r"--liggghts")
+def _(work):
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--liggghts", "/nonexistent/x"]
+
+
+def fake_engine(work, body):
+    path = work / "fake_liggghts"
+    path.write_text(f"#!/bin/sh\n{body}\n")
+    path.chmod(0o755)
+    return str(path)
+
+
+@direct_dem_probe("dd_engine_hangs", r"did not answer", exit=3, program=DIRECT_DEM_QUICK_START)
+def _(work):
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--liggghts",
+            fake_engine(work, "sleep 1000")]
+
+
+@direct_dem_probe("dd_engine_echoes", r"did not answer", exit=3, program=DIRECT_DEM_QUICK_START)
+def _(work):
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--liggghts",
+            fake_engine(work, "cat")]
+
+
+@direct_dem_probe("dd_engine_dies", r"liggghts stopped", exit=3)
+def _(work):
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--liggghts",
+            fake_engine(work, "echo LIGGGHTS; exit 7")]
+
+
+@direct_dem_probe("dd_output_is_a_file", r"is a file")
+def _(work):
+    (work / "out").write_text("a file\n")
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out")]
+
+
+def untouched(name):
+    def check(work, outcome):
+        return "" if (work / name).read_text() == "precious\n" else f"{name} was written through"
+    return check
+
+
+@direct_dem_probe("dd_history_link", r"symbolic link", check=untouched("elsewhere.csv"))
+def _(work):
+    (work / "out").mkdir()
+    (work / "elsewhere.csv").write_text("precious\n")
+    (work / "out" / "history.csv").symlink_to(work / "elsewhere.csv")
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out")]
+
+
+@direct_dem_probe("dd_lock_link", r"symbolic link", check=untouched("elsewhere.txt"))
+def _(work):
+    (work / "out").mkdir()
+    (work / "elsewhere.txt").write_text("precious\n")
+    (work / "out" / "direct_dem.lock").symlink_to(work / "elsewhere.txt")
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--resume"]
+
+
+@direct_dem_probe("dd_resume_nothing", r"no checkpoint")
+def _(work):
+    (work / "out").mkdir()
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--resume"]
+
+
+@direct_dem_probe("dd_resume_empty_checkpoint", r"checkpoint\.json")
+def _(work):
+    (work / "out").mkdir()
+    (work / "out" / "checkpoint.json").write_text("{}")
+    return [str(DIRECT_DEM_TINY), "--output", str(work / "out"), "--resume"]
+
+
+# ---------------------------------------------------------------------------------------------
 # writes: a disk that fills up during the run
 
 def can_mount():
@@ -727,7 +836,7 @@ def main():
             print(f"skip   {p.category}/{p.name}: {why_not}")
             continue
         args = p.make(work)
-        outcome = run_in(work, binary, args, p.timeout, p.np)
+        outcome = run_in(work, binary, args, p.timeout, p.np, p.program)
         problem = judge(p, outcome)
         extra = p.check(work, outcome) if p.check else ""
         problem = problem or extra

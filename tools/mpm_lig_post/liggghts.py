@@ -185,8 +185,11 @@ class Session:
         import queue
 
         limit = seconds if seconds is not None else ANSWER_SECONDS + work / SLOWEST_RATE
-        self.proc.stdin.write(commands.rstrip("\n") + f'\nprint "{self.MARK}"\n')
-        self.proc.stdin.flush()
+        try:
+            self.proc.stdin.write(commands.rstrip("\n") + f'\nprint "{self.MARK}"\n')
+            self.proc.stdin.flush()
+        except (BrokenPipeError, OSError):
+            pass  # the engine has ended: what it printed is read below, then its exit code
         out = []
         deadline = time.monotonic() + limit
         while True:

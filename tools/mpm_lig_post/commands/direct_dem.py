@@ -108,8 +108,10 @@ def main():
     stop_on_signals()
     case = read_json(a.case)
     out = a.output = os.path.abspath(a.output)
-    if a.liggghts is not None and not shutil.which(a.liggghts):
-        raise InputError(f"--liggghts {a.liggghts}: no such executable")
+    if a.liggghts is not None:
+        if not shutil.which(a.liggghts):
+            raise InputError(f"--liggghts {a.liggghts}: no such executable")
+        a.liggghts = os.path.abspath(shutil.which(a.liggghts))  # the engine runs in the folder
     if a.liggghts is None and not shutil.which("liggghts"):
         raise InputError("liggghts: not on PATH (apt-get install liggghts, or give --liggghts)")
     a.case_digest = case_digest(a.case)
