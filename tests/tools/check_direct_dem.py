@@ -164,6 +164,41 @@ def affine():
     check(np.abs(other["strain"] - exact).max() > 1e-3, "a wavy displacement is told apart")
     check(np.allclose(deviatoric_strain(hencky(np.tile(np.eye(2), (2, 1, 1)))), 0),
           "no strain without deformation")
+    fabric_checks()
+
+
+def fabric_checks():
+    """Contact fabric of lattices whose fabric is known, across the periodic faces."""
+    from mpm_lig_post.direct_dem.packing import fabric, tile
+
+    r = 0.005
+    # a hexagonal packing of touching discs, shifted off the origin: 6 contacts a grain
+    nx, ny = 10, 6
+    rows = [[(2 * r * (i + 0.5 * (j % 2)), r * math.sqrt(3) * j) for i in range(nx)]
+            for j in range(ny)]
+    xy = np.array(rows).reshape(-1, 2) + [0.3, -0.2]
+    radii = np.full(len(xy), r * (1 + 1e-9))
+    cell = (2 * r * nx, r * math.sqrt(3) * ny)
+    f = fabric(xy, radii, cell, (0.3, -0.2))
+    check(abs(f["coordination"] - 6) < 1e-9 and abs(f["anisotropy"]) < 1e-9,
+          f"hexagonal packing: coordination {f['coordination']:.3f}, anisotropy "
+          f"{f['anisotropy']:.2e}")
+    # chains along x only: every normal along x, anisotropy 2, direction 0
+    xy = np.array([(2 * r * i, 4 * r * j) for i in range(8) for j in range(4)], float)
+    f = fabric(xy, np.full(len(xy), r * (1 + 1e-9)), (16 * r, 16 * r), (0, 0))
+    check(abs(f["anisotropy"] - 2) < 1e-9 and abs(f["coordination"] - 2) < 1e-9 and
+          min(f["direction_deg"], 180 - f["direction_deg"]) < 1e-6,
+          f"chains along x: anisotropy {f['anisotropy']:.3f}, direction {f['direction_deg']:.1f}")
+    # a cell repeated 3 x 3 keeps its fabric and its void ratio
+    rng = np.random.default_rng(4)
+    small = rng.random((60, 2)) * 0.1
+    rr = rng.uniform(0.006, 0.012, 60)
+    one = fabric(small, rr, (0.1, 0.1), (0, 0))
+    big_xy, big_r, _, big_cell, n = tile(small, rr, np.zeros((60, 3)), (0.1, 0.1), 3)
+    nine = fabric(big_xy, big_r, big_cell, (0, 0))
+    check(n == 540 and nine["contacts"] == 9 * one["contacts"] and
+          abs(nine["anisotropy"] - one["anisotropy"]) < 1e-12,
+          f"tiles 3 x 3: {nine['contacts']} = 9 x {one['contacts']} contacts, the same anisotropy")
 
 
 def real(work):

@@ -1,5 +1,5 @@
 """The footing problem a direct DEM runs (tools/direct_dem.py): the case checked and turned into
-what the run needs, and the grains drawn, placed and tiled as src/rve/packing.cpp does."""
+what the run needs."""
 import math
 
 import numpy as np
@@ -163,64 +163,6 @@ def check_memory(pb, scale):
         raise InputError(f"--scale {scale:g}: {pb['grains']} grains need about "
                          f"{need_bytes / 1e9:.3g} GB (limit {MAX_GRAINS} grains"
                          + (f", {available / 1e9:.3g} GB available)" if available else ")"))
-
-
-def draw_radii(radius, count, rng):
-    """Radii as src/rve/packing.cpp draws them (uniform, or the tabulated cumulative)."""
-    u = rng.random(count)
-    if "radii" in radius:
-        return np.interp(u, radius["cumulative"], radius["radii"])
-    return radius["min"] + u * (radius["max"] - radius["min"])
-
-
-def place(radii, lx, ly, rng):
-    """Random non-overlapping centres in a periodic lx x ly cell, large grains first
-    (src/rve/packing.cpp); InputError when a grain cannot be placed."""
-    order = np.argsort(-radii)
-    radii = radii[order]
-    reach = 2.0 * radii[0]
-    nx, ny = max(1, int(lx / reach)), max(1, int(ly / reach))
-    buckets = {}
-    centres = np.zeros((len(radii), 2))
-    for k, r in enumerate(radii):
-        for _ in range(100000):
-            x = np.array([rng.random() * lx, rng.random() * ly])
-            cx, cy = min(nx - 1, int(x[0] / lx * nx)), min(ny - 1, int(x[1] / ly * ny))
-            clash = False
-            for dx in (-1, 0, 1):
-                for dy in (-1, 0, 1):
-                    for j in buckets.get(((cx + dx) % nx, (cy + dy) % ny), ()):
-                        d = centres[j] - x
-                        d[0] -= lx * round(d[0] / lx)
-                        d[1] -= ly * round(d[1] / ly)
-                        if d @ d < (radii[j] + r) ** 2:
-                            clash = True
-                            break
-                    if clash:
-                        break
-                if clash:
-                    break
-            if not clash:
-                centres[k] = x
-                buckets.setdefault((cx, cy), []).append(k)
-                break
-        else:
-            raise InputError(f"could not place grain {k + 1} of {len(radii)} without overlap: "
-                             "lower preparation.initial_solid_fraction")
-    return centres, radii
-
-
-
-
-def tile(xy, radii, velocities, cell, tiles):
-    """A periodic packing repeated tiles x tiles times: centres, radii and velocities of the
-    larger periodic cell (its images continue across every seam as across the cell's own
-    faces, so the larger packing has the cell's void ratio, stress and fabric)."""
-    shifts = np.array([(i * cell[0], j * cell[1]) for j in range(tiles) for i in range(tiles)])
-    n = len(xy)
-    big_xy = (xy[None, :, :] + shifts[:, None, :]).reshape(-1, 2)
-    return (big_xy, np.tile(radii, len(shifts)), np.tile(velocities, (len(shifts), 1)),
-            (tiles * cell[0], tiles * cell[1]), n * len(shifts))
 
 
 def contact_friction(rve):

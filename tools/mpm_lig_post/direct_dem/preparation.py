@@ -6,7 +6,8 @@ import os
 
 import numpy as np
 
-from mpm_lig_post.direct_dem.case import contact_friction, draw_radii, place, tile
+from mpm_lig_post.direct_dem.case import contact_friction
+from mpm_lig_post.direct_dem.packing import draw_radii, fabric, place, tile
 from mpm_lig_post.liggghts import render
 
 CHUNK = 100            # servo steps per update (src/rve/consolidation.cpp kChunk)
@@ -119,6 +120,11 @@ class Preparation:
                 st["phase"] = "tiled"
         e = st["void_ratio"]
         o = self.observe()
+        if self.args.tiles > 1:  # what the repeated cell became after settling again
+            self.prepared["before_tiling"] = {k: self.prepared[k] for k in
+                                              ("void_ratio", "sxx", "syy", "steps", "cell",
+                                               "grains", "fabric")}
+            self.prepared["fabric"] = self.fabric_now(o)
         self.prepared.update(void_ratio=e, sxx=o["sxx"], syy=o["syy"], steps=self.steps,
                              cell=[o["lx"], o["ly"]], grains=self.grains)
         if abs(e - target) > self.args.void_ratio_tolerance:
@@ -134,14 +140,21 @@ class Preparation:
         return {"void_ratio": self.void_ratio(o), "compacted_void_ratio":
                 self.prep_state["compacted"], "friction_used": friction, "sxx": o["sxx"],
                 "syy": o["syy"], "steps": self.steps, "cell": [o["lx"], o["ly"]],
-                "grains": self.grains, "tiles": self.args.tiles}
+                "grains": self.grains, "tiles": self.args.tiles,
+                "fabric": self.fabric_now(o)}
+
+    def fabric_now(self, o):
+        """The contact fabric of the periodic cell now (from a dump: the run is not
+        disturbed)."""
+        _, xy, r = self.grains_now()
+        origin = self.session.values("BOX", ["xlo", "ylo"])
+        return fabric(xy, r, (o["lx"], o["ly"]), origin)
 
     def repeat_cell(self, tiles):
         """The prepared periodic cell repeated tiles x tiles times in a new engine (a data
         file: contact history starts anew, so the larger cell is settled again)."""
         ids, xy, r, vel = self.grains_now(velocities=True)
         o = self.observe()
-        self.prepared["cell_before_tiling"] = [o["lx"], o["ly"]]
         big_xy, big_r, big_v, (lx, ly), n = tile(xy, r, vel, (o["lx"], o["ly"]), tiles)
         origin = self.session.values("BOX", ["xlo", "ylo"])
         self.close()
