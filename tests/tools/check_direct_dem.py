@@ -165,6 +165,24 @@ def affine():
     check(np.allclose(deviatoric_strain(hencky(np.tile(np.eye(2), (2, 1, 1)))), 0),
           "no strain without deformation")
     fabric_checks()
+    size_checks()
+
+
+def size_checks():
+    """The size-effect fit gives back a known law, with and without a void-ratio term."""
+    from mpm_lig_post import size_effect
+
+    law = lambda bd, e: 22.0 - 40.0 / bd - 300.0 * (e - 0.187)
+    rows = [{"B_over_d": bd, "void_ratio": e, "highest": law(bd, e)}
+            for bd, e in ((20, 0.186), (20, 0.188), (40, 0.187), (80, 0.1855), (80, 0.1875))]
+    f = size_effect.fit(rows, "highest", 0.187)
+    check(abs(f["at_infinity"] - 22.0) < 1e-9 and abs(f["slope"] + 40) < 1e-8 and
+          abs(f["void_ratio_slope"] + 300) < 1e-6,
+          f"size fit: {f['at_infinity']:.3f} + {f['slope']:.2f} d/B + {f['void_ratio_slope']:.1f} de")
+    g = {r["B_over_d"]: r for r in size_effect.summary(rows, "highest")}
+    check(g[20]["n"] == 2 and abs(g[20]["mean"] - (law(20, 0.186) + law(20, 0.188)) / 2) < 1e-12
+          and g[40]["std"] is None, "per-size mean, count and no std for one packing")
+    check(size_effect.fit(rows[:2], "highest") is None, "no fit from two runs")
 
 
 def fabric_checks():

@@ -25,12 +25,12 @@ import re  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from mpm_lig_post import checkout, cli, figures  # noqa: E402
+from mpm_lig_post import checkout, cli, figures, size_effect  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
 from mpm_lig_post.fields import FieldFile  # noqa: E402
 from mpm_lig_post.tables import need, read_history, read_json, require_columns  # noqa: E402
 
-WINDOWS = (("plateau", 0.1, 0.4), ("mean", 0.4, 1.0))
+WINDOWS = (("plateau", 0.1, 0.4), ("mean", 0.4, 1.0), ("plateau_0.1_0.3", 0.1, 0.3))
 
 
 def first_number(cell):
@@ -93,7 +93,8 @@ def run_row(directory):
            "core_hours": summary["core_seconds"] / 3600.0,
            "wall_hours": summary["wall_seconds"] / 3600.0,
            "reached": float(sB[-1]), "highest": float(q.max()),
-           "highest_at": float(sB[int(np.argmax(q))])}
+           "highest_at": float(sB[int(np.argmax(q))]),
+           "void_ratio": (summary.get("preparation") or {}).get("void_ratio")}
     row["peak"], row["peak_at"] = first_peak(sB, q)
     for name, a, b in WINDOWS:
         inside = (sB >= a) & (sB <= b)
@@ -128,13 +129,16 @@ def main():
     p.add_argument("--pictures", nargs="*", default=[], help="multiscale field pictures to set beside")
     p.add_argument("-o", "--output", metavar="PREFIX", default="direct_dem_compare",
                    help="writes PREFIX.json, PREFIX_load.png, PREFIX_fields.png")
+    p.add_argument("--sizes", action="store_true",
+                   help="also the size effect: per B/d the mean +- std over packings, a fit "
+                   "against d/B extrapolated to B/d -> infinity (PREFIX_sizes.png)")
     p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
     if os.path.isdir(a.output) or a.output.endswith(os.sep):
         raise InputError(f"-o {a.output}: a folder, not a prefix (e.g. "
                          f"{os.path.join(a.output, 'direct_dem_compare')})")
     cli.writable_file(a.output + ".json", "-o file")
-    for suffix in ("_load.png", "_fields.png"):
+    for suffix in ("_load.png", "_fields.png", "_sizes.png"):
         cli.picture_file(a.output + suffix)
     for d in a.runs:
         if not os.path.isfile(os.path.join(d, "summary.json")):
@@ -166,8 +170,10 @@ def main():
             diffs = [f"{key} {100 * r[f'{key} vs {name}']:+.0f} %" for key in
                      ("peak", "plateau", "mean") if f"{key} vs {name}" in r]
             print(f"    against {name}: {', '.join(diffs)}")
+    sizes = size_table(rows, multi, a.output, a.dpi) if a.sizes else None
     with open(a.output + ".json", "w") as f:
-        json.dump({"runs": rows, "multiscale": multi, "table": a.multiscale_table}, f, indent=1)
+        json.dump({"runs": rows, "multiscale": multi, "table": a.multiscale_table,
+                   "sizes": sizes}, f, indent=1)
     print(f"wrote {a.output}.json")
 
     fig, ax = figures.subplots(figsize=(7.5, 4.6))
@@ -210,6 +216,24 @@ def main():
         ax.set_axis_off()
         ax.set_title(os.path.basename(picture), fontsize=9)
     figures.save(fig, a.output + "_fields.png", a.dpi)
+
+
+def size_table(rows, multi, prefix, dpi):
+    """The size effect of the highest load and the plateaus: printed, drawn, returned."""
+    keys = ("highest", "plateau_0.1_0.3", "plateau")
+    voids = [r["void_ratio"] for r in rows if r.get("void_ratio") is not None]
+    e0 = round(float(np.mean(voids)), 4) if voids else None
+    print("\nsize effect (plateau: s/B 0.1-0.4):")
+    for line in size_effect.table(rows, keys, e0):
+        print(line)
+    fig, axes = figures.subplots(1, 2, figsize=(11, 4.2), squeeze=False)
+    size_effect.plot(axes[0][0], rows, "highest", {k: m["peak"] for k, m in multi.items()},
+                     r"highest $q/q_s$")
+    size_effect.plot(axes[0][1], rows, "plateau_0.1_0.3", {}, r"mean $q/q_s$ over s/B 0.1-0.3")
+    axes[0][0].legend(fontsize=7, frameon=False)
+    figures.save(fig, prefix + "_sizes.png", dpi)
+    return {k: {"by_size": size_effect.summary(rows, k), "fit": size_effect.fit(rows, k, e0)}
+            for k in keys}
 
 
 def entry():
