@@ -116,6 +116,7 @@ class Preparation:
                     self.materials(st["friction"])
                     self.send("run 0")
             elif phase == "tile":
+                self.check_void_ratio(st["void_ratio"])  # before the larger cell costs anything
                 self.repeat_cell(self.args.tiles)
                 st["phase"] = "tiled"
         e = st["void_ratio"]
@@ -127,13 +128,17 @@ class Preparation:
             self.prepared["fabric"] = self.fabric_now(o)
         self.prepared.update(void_ratio=e, sxx=o["sxx"], syy=o["syy"], steps=self.steps,
                              cell=[o["lx"], o["ly"]], grains=self.grains)
+        self.check_void_ratio(e)
+        self.progress(f"prepared: e = {e:.4f} (target {target}), sigma = "
+                      f"{-o['sxx'] / 1e3:.1f} / {-o['syy'] / 1e3:.1f} kPa, {self.steps} steps",
+                      force=True)
+
+    def check_void_ratio(self, e):
+        target = self.pb["e0"]
         if abs(e - target) > self.args.void_ratio_tolerance:
             raise RuntimeError(f"preparation reached void ratio {e:.4f}, "
                                f"preparation.target_void_ratio asks {target} +- "
                                f"{self.args.void_ratio_tolerance} (another --seed may reach it)")
-        self.progress(f"prepared: e = {e:.4f} (target {target}), sigma = "
-                      f"{-o['sxx'] / 1e3:.1f} / {-o['syy'] / 1e3:.1f} kPa, {self.steps} steps",
-                      force=True)
 
     def preparation(self, o, friction):
         """What the RVE procedure reached (before any tiling): summary.json's preparation."""
