@@ -147,6 +147,8 @@ class Block:
             st["balance"] = row["base_force"] / (row["surcharge_force"] + row["footing_force"]) - 1.0
             st["settled"] = st["settled"] + 1 if kr < AT_REST or abs(st["balance"]) < BALANCE else 0
             st["updates"] += 1
+            self.progress(f"settling under q_s: update {st['updates']}, base / applied - 1 = "
+                          f"{st['balance']:+.4f}, kinetic/elastic {kr:.2g}")
             if st["settled"] >= 3 and st["updates"] > 5:
                 break
             self.safe_point("settle")
