@@ -1,9 +1,11 @@
 #include "coupling/point_checkpoint.h"
 
 #include <algorithm>
-#include <iterator>
+#include <functional>
 #include <stdexcept>
 #include <string>
+
+#include "coupling/rve_state_fields.h"
 
 namespace mpm_lig::coupling {
 namespace {
@@ -12,19 +14,28 @@ namespace {
 struct Field {
   const char* name;
   std::size_t width;
-  double* (*at)(PointCheckpoint&);
+  std::function<double*(PointCheckpoint&)> at;
 };
 
-const Field kFields[] = {
-    {"stress", 9, [](PointCheckpoint& p) { return p.stress.data(); }},
-    {"dem_substeps", 1, [](PointCheckpoint& p) { return &p.substeps; }},
-    {"rotation", 9, [](PointCheckpoint& p) { return p.rve.rotation.data(); }},
-    {"streaming", 9, [](PointCheckpoint& p) { return p.rve.streaming.data(); }},
-    {"rve_particle_steps", 1, [](PointCheckpoint& p) { return &p.rve.particle_steps; }},
-    {"last_mean_stress", 1, [](PointCheckpoint& p) { return &p.rve.last_mean_stress; }},
-    {"dem_work", DemWork::kValues, [](PointCheckpoint& p) { return p.work; }},
-    {"quiet_points", QuietPoints::kValues, [](PointCheckpoint& p) { return p.quiet; }},
-};
+//! The fields in their order on disk; the RVE's state is kRveStateFields, the table a moving
+//! RVE's state goes by too.
+std::vector<Field> make_fields() {
+  std::vector<Field> fields{
+      {"stress", 9, [](PointCheckpoint& p) { return p.stress.data(); }},
+      {"dem_substeps", 1, [](PointCheckpoint& p) { return &p.substeps; }},
+  };
+  for (const RveStateField& f : kRveStateFields)
+    fields.push_back({f.name, f.width, [at = f.at](PointCheckpoint& p) { return at(p.rve); }});
+  fields.push_back({"dem_work", DemWork::kValues, [](PointCheckpoint& p) { return p.work; }});
+  fields.push_back(
+      {"quiet_points", QuietPoints::kValues, [](PointCheckpoint& p) { return p.quiet; }});
+  return fields;
+}
+
+const std::vector<Field>& fields() {
+  static const std::vector<Field> table = make_fields();
+  return table;
+}
 
 constexpr const char* kFieldCount = "point_fields";
 
@@ -32,14 +43,14 @@ constexpr const char* kFieldCount = "point_fields";
 
 std::size_t point_checkpoint_width() {
   std::size_t width = 0;
-  for (const Field& f : kFields)
+  for (const Field& f : fields())
     width += f.width;
   return width;
 }
 
 void pack(const PointCheckpoint& p, std::vector<double>& row) {
   PointCheckpoint copy = p;
-  for (const Field& f : kFields) {
+  for (const Field& f : fields()) {
     const double* values = f.at(copy);
     row.insert(row.end(), values, values + f.width);
   }
@@ -47,7 +58,7 @@ void pack(const PointCheckpoint& p, std::vector<double>& row) {
 
 PointCheckpoint unpack(const double* row) {
   PointCheckpoint p;
-  for (const Field& f : kFields) {
+  for (const Field& f : fields()) {
     std::copy(row, row + f.width, f.at(p));
     row += f.width;
   }
@@ -58,7 +69,7 @@ void write_points(materials::CheckpointWriter& out, const std::vector<double>& r
   const std::size_t width = point_checkpoint_width();
   const std::size_t points = rows.size() / width;
   std::size_t offset = 0;
-  for (const Field& f : kFields) {
+  for (const Field& f : fields()) {
     std::vector<double> values;
     values.reserve(points * f.width);
     for (std::size_t p = 0; p < points; ++p) {
@@ -68,7 +79,7 @@ void write_points(materials::CheckpointWriter& out, const std::vector<double>& r
     out.write(f.name, values);
     offset += f.width;
   }
-  out.write(kFieldCount, {static_cast<double>(std::size(kFields))});
+  out.write(kFieldCount, {static_cast<double>(fields().size())});
 }
 
 std::vector<double> read_points(const materials::CheckpointReader& in, std::size_t points) {
@@ -79,13 +90,13 @@ std::vector<double> read_points(const materials::CheckpointReader& in, std::size
   if (!in.has(kFieldCount))
     throw mismatch("it names no fields");
   const std::vector<double> count = in.read(kFieldCount);
-  if (count.size() != 1 || count[0] != static_cast<double>(std::size(kFields)))
+  if (count.size() != 1 || count[0] != static_cast<double>(fields().size()))
     throw mismatch("it has " + std::to_string(count.empty() ? 0L : static_cast<long>(count[0])) +
-                   " fields, this version " + std::to_string(std::size(kFields)));
+                   " fields, this version " + std::to_string(fields().size()));
   const std::size_t width = point_checkpoint_width();
   std::vector<double> rows(points * width);
   std::size_t offset = 0;
-  for (const Field& f : kFields) {
+  for (const Field& f : fields()) {
     if (!in.has(f.name))
       throw mismatch(std::string("no field '") + f.name + "'");
     const std::vector<double> values = in.read(f.name);

@@ -15,7 +15,7 @@ namespace mpm_lig::coupling {
 //!
 //! Stored as one named array per field (point by point), so that a checkpoint written with
 //! other fields is refused by name. A new field is a member here and a line in the table of
-//! point_checkpoint.cpp.
+//! point_checkpoint.cpp; a new field of rve::Rve::State is a line in rve_state_fields.h alone.
 struct PointCheckpoint {
   Mat3 stress = Mat3::Zero();               //!< last homogenised stress, physical frame
   double substeps = 0.0;                    //!< DEM steps of its last update

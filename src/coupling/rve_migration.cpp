@@ -1,25 +1,8 @@
 #include "coupling/rve_migration.h"
 
-#include <algorithm>
 #include <filesystem>
 
 namespace mpm_lig::coupling {
-
-void pack_state(const rve::Rve::State& s, double* v) {
-  std::copy_n(s.rotation.data(), 9, v);
-  std::copy_n(s.streaming.data(), 9, v + 9);
-  v[18] = s.particle_steps;
-  v[19] = s.last_mean_stress;
-}
-
-rve::Rve::State unpack_state(const double* v) {
-  rve::Rve::State s;
-  s.rotation = Eigen::Map<const Mat3>(v);
-  s.streaming = Eigen::Map<const Mat3>(v + 9);
-  s.particle_steps = v[18];
-  s.last_mean_stress = v[19];
-  return s;
-}
 
 rve::Rve::State send_rve(rve::Rve& rve, const std::string& file) {
   rve.write_checkpoint(file);

@@ -5,6 +5,7 @@
 
 #include <mpi.h>
 
+#include "coupling/rve_state_fields.h"
 #include "rve/rve.h"
 
 namespace mpm_lig::coupling {
@@ -14,10 +15,7 @@ namespace mpm_lig::coupling {
 //! exchange by MPI. The new owner continues bit-identically to the RVE had it stayed (one
 //! rank per RVE; docs/DESIGN.md §7 and §10).
 
-//! Doubles of a packed Rve::State.
-constexpr int kRveStateValues = 20;
-void pack_state(const rve::Rve::State& s, double* v);
-rve::Rve::State unpack_state(const double* v);
+// The state goes by MPI packed as rve_state_fields.h lists it (pack_state, unpack_state).
 
 //! The leaving half (collective over the RVE's communicator): its files at `file`
 //! (Rve::write_checkpoint, which leaves its arithmetic untouched), and its state.

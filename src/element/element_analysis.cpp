@@ -13,6 +13,7 @@
 #include "core/resources.h"
 #include "core/stop_signal.h"
 #include "dem/file_name.h"
+#include "element/recorded_path.h"
 #include "element/strain_path.h"
 #include "io/csv_history.h"
 #include "io/summary.h"
@@ -23,9 +24,6 @@
 
 namespace mpm_lig::element {
 namespace {
-
-//! Most strain increments an element test may take (each is at least one DEM run).
-constexpr double kMaxIncrements = 1e9;
 
 class ElementTest : public Analysis {
  public:
@@ -77,7 +75,8 @@ class ElementTest : public Analysis {
   ElementTestSpec test_;
 };
 
-std::vector<std::string> history_columns() {
+//! The history columns; a recorded path adds `path_time`, the recorded time of the row.
+std::vector<std::string> history_columns(bool recorded) {
   std::vector<std::string> columns = {"increment", "time"};
   for (const char* c : kVoigtNames)
     columns.push_back(std::string("e_") + c);
@@ -86,6 +85,8 @@ std::vector<std::string> history_columns() {
   for (const char* c : {"p", "q", "e_vol", "gamma_xy", "void_ratio", "coordination_number",
                         "kinetic_ratio", "substeps", "flow_ratio", "step_travel", "max_overlap"})
     columns.push_back(c);
+  if (recorded)
+    columns.push_back("path_time");
   return columns;
 }
 
@@ -230,19 +231,24 @@ struct ElementTest::Loading {
 //! What an element test writes as it loads (rank 0): history.csv and the RVE snapshots.
 class ElementTest::Outputs {
  public:
-  Outputs(const RunContext& context, rve::Rve& rve, int dimension)
-      : dir_(context.output_dir), rve_(rve), dimension_(dimension) {
+  Outputs(const RunContext& context, rve::Rve& rve, int dimension, const RecordedPath* recorded)
+      : dir_(context.output_dir), rve_(rve), dimension_(dimension), recorded_(recorded) {
     int rank = 0;
     MPI_Comm_rank(context.comm, &rank);
     writer_ = rank == 0;
     if (!writer_)
       return;
-    history_ = std::make_unique<io::CsvHistory>((dir_ / "history.csv").string(), history_columns());
+    history_ = std::make_unique<io::CsvHistory>((dir_ / "history.csv").string(),
+                                                history_columns(recorded_ != nullptr));
     std::filesystem::create_directories(dir_ / "snapshots");
   }
   void history(int k, const Loading& s) {
-    if (writer_)
-      history_->write(history_row(k, s.time, s.F, s.now, dimension_, s.substeps));
+    if (!writer_)
+      return;
+    std::vector<double> row = history_row(k, s.time, s.F, s.now, dimension_, s.substeps);
+    if (recorded_)
+      row.push_back(recorded_->time[k]);
+    history_->write(row);
   }
   //! Collective over the RVE's ranks.
   void snapshot(int k) {
@@ -255,9 +261,25 @@ class ElementTest::Outputs {
   std::filesystem::path dir_;
   rve::Rve& rve_;
   int dimension_;
+  const RecordedPath* recorded_;  //!< a recorded path's rows, or null
   bool writer_ = false;
   std::unique_ptr<io::CsvHistory> history_;
 };
+
+//! Where a recorded path came from and how it was replayed.
+nlohmann::json recorded_summary(const RecordedPath& p) {
+  nlohmann::json j = {{"file", p.source}, {"rows", p.F.size()}};
+  if (p.point >= 0)
+    j["point"] = p.point;
+  long exact = 0, fixed = 0;
+  for (std::size_t k = 0; k < p.intervals(); ++k) {
+    exact += p.recorded_increment[k].has_value();
+    fixed += p.substeps[k] > 0;
+  }
+  j["recorded_increments"] = exact;  // applied as recorded, not as F_{k+1} F_k^-1
+  j["recorded_substeps"] = fixed;    // run with the file's sub-steps, not the RVE's rule
+  return j;
+}
 
 nlohmann::json ElementTest::describe() const {
   return {{"engine", rve_.engine},
@@ -295,7 +317,9 @@ void ElementTest::stop_if_asked(const RunContext& context, int k, int n, int wri
 //! Increment `k` of the path and its corrections; returns the DEM sub-steps it took.
 int ElementTest::apply_increment(rve::Rve& rve, StrainPath& path, int k, Loading& state) const {
   const Mat3 dF = path.increment(k, state.now.stress);
-  int substeps = rve.deform(dF);
+  // A recorded path's increment runs the sub-steps its file gives, else (0) the RVE's rule:
+  // the rule the coupling applies to an MPM point's update.
+  int substeps = rve.deform(dF, path.substeps(k));
   state.F = dF * state.F;
   // Stress-controlled directions: correct within the increment until on target. Each
   // correction takes the sub-steps the RVE's rule gives for its strain (the same inertial
@@ -378,11 +402,14 @@ RunEnd ElementTest::run(const RunContext& context) {
   rve->check_health(prepared);
   const auto path = plan_strain_path(*rve, prepared, summary);
   Loading state(prepared, confining_pressure(prepared), rve_.dimension);
-  Outputs out(context, *rve, rve_.dimension);
+  state.F = path->start();
+  Outputs out(context, *rve, rve_.dimension, test_.recorded.get());
   out.history(0, state);
   out.snapshot(0);
   load(context, *rve, *path, out, state);
   summary["increments"] = path->increments();
+  if (test_.recorded)
+    summary["path"] = recorded_summary(*test_.recorded);
   finish_summary(context, *rve, state, prepared_steps, preparation_seconds, summary);
   summary["wall_seconds"] = seconds_since(start);
   int rank = 0;
@@ -393,47 +420,6 @@ RunEnd ElementTest::run(const RunContext& context) {
 }
 
 }  // namespace
-
-ElementTestSpec parse_element_test(const CaseNode& a, const rve::RveSpec& rve) {
-  ElementTestSpec t;
-  const std::string test2d = "drained_biaxial", test3d = "drained_triaxial";
-  t.name =
-      a.choice("test", {"isotropic_compression", test2d, test3d, "undrained_cyclic_simple_shear"});
-  if ((t.name == test2d && rve.dimension != 2) || (t.name == test3d && rve.dimension != 3))
-    a.fail("test", t.name + " needs an RVE of dimension " + (t.name == test2d ? "2" : "3") + " (" +
-                       rve.path + ".dimension is " + std::to_string(rve.dimension) + ")");
-  t.strain_increment = a.in_range_or("strain_increment", 1e-7, 0.01, 1e-4);
-  t.output_every = a.get_or<int>("output_every", 1);
-  if (t.output_every < 1)
-    a.fail("output_every", "must be >= 1");
-  t.snapshot_every = a.get_or<int>("snapshot_every", 0);
-  if (t.snapshot_every < 0)
-    a.fail("snapshot_every", "must be >= 0");
-  t.save_restart = a.get_or<bool>("save_restart", true);
-  if (t.name == "isotropic_compression") {
-    t.kind = TestKind::kIsotropicCompression;
-    t.strain = a.in_range("strain", 1e-7, 0.5);
-  } else if (t.name == "undrained_cyclic_simple_shear") {
-    t.kind = TestKind::kUndrainedCyclicSimpleShear;
-    t.shear_amplitude = a.in_range("shear_strain_amplitude", 1e-7, 2.0);
-    t.cycles = a.get<int>("cycles");
-    // Four quarter cycles of amplitude / increment each; the count must stay a sane loop.
-    if (t.cycles < 1 || 4.0 * t.cycles * t.shear_amplitude / t.strain_increment > kMaxIncrements)
-      a.fail("cycles", "must be >= 1 and take at most " + std::to_string(long(kMaxIncrements)) +
-                           " strain increments");
-  } else {
-    t.kind = TestKind::kDrainedCompression;
-    t.strain = a.in_range("axial_strain", 1e-7, 0.7);
-    t.confining_pressure = a.positive_or("confining_pressure", 0.0);
-    t.confining_tolerance = a.in_range_or("confining_tolerance", 1e-4, 0.1, 0.005);
-    t.max_corrections = a.get_or<int>("max_corrections", 20);
-    if (t.max_corrections < 0)
-      a.fail("max_corrections", "must be >= 0");
-  }
-  if (t.strain_increment > std::max(t.strain, t.shear_amplitude))
-    a.fail("strain_increment", "is larger than the total strain of the test");
-  return t;
-}
 
 std::unique_ptr<Analysis> make_element_test(const CaseNode& root) {
   rve::RveSpec rve = rve::parse_rve_spec(root.child("rve"));

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "element/recorded_path.h"
+
 namespace mpm_lig::element {
 namespace {
 
@@ -155,6 +157,8 @@ std::unique_ptr<StrainPath> make_strain_path(const ElementTestSpec& test, int di
       return std::make_unique<DrainedPath>(test, dimension, confining_pressure, lateral_stiffness);
     case TestKind::kUndrainedCyclicSimpleShear:
       return std::make_unique<CyclicSimpleShearPath>(test);
+    case TestKind::kRecordedPath:
+      return make_recorded_strain_path(test.recorded);
   }
   return nullptr;
 }

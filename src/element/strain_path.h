@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "core/tensor.h"
-#include "element/element_analysis.h"
+#include "element/element_spec.h"
 
 namespace mpm_lig::element {
 
@@ -21,10 +21,16 @@ class StrainPath {
   //! increment, that brings the stress-controlled directions back to their target; none when
   //! the stress is on target (or the path controls no stress).
   virtual std::optional<Mat3> correction(const Mat3& /*stress*/) { return std::nullopt; }
+  //! DEM steps of increment `k`; 0: the RVE's sub-stepping rule (docs/DESIGN.md §8), the one
+  //! the coupling uses for an MPM point's update.
+  virtual int substeps(int /*k*/) const { return 0; }
+  //! The deformation gradient the path starts from (the packing is taken to be in it).
+  virtual Mat3 start() const { return Mat3::Identity(); }
 };
 
 //! The path of `test` for an RVE of `dimension`; `lateral_stiffness` [Pa per unit strain] is
-//! the servo's first estimate of the packing's lateral stiffness (drained tests).
+//! the servo's first estimate of the packing's lateral stiffness (drained tests). A recorded
+//! path comes from recorded_path.h.
 std::unique_ptr<StrainPath> make_strain_path(const ElementTestSpec& test, int dimension,
                                              double confining_pressure, double lateral_stiffness);
 

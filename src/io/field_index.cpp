@@ -37,6 +37,8 @@ XdmfKind kind_of(const Layout& layout, const std::string& name) {
     return XdmfKind::vector;
   if (layout.dims[1] == 6)
     return XdmfKind::tensor;
+  if (layout.dims[1] == 9)
+    return XdmfKind::matrix;
   throw std::runtime_error("HDF5: dataset " + name + " is not a point field");
 }
 

@@ -162,8 +162,11 @@ void FieldWriter::write_doubles(const std::string& name, XdmfKind kind,
                                 const std::vector<double>& data, std::size_t columns) {
   Open& open = *open_;
   const std::size_t rows = open.step.points;
+  const char* components = kind == XdmfKind::tensor   ? "xx yy zz xy xz yz"
+                           : kind == XdmfKind::matrix ? "xx xy xz yx yy yz zx zy zz"
+                                                      : "";
   write_dataset(open.group.get(), name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), rows,
-                columns, kind == XdmfKind::tensor ? "xx yy zz xy xz yz" : "");
+                columns, components);
   open.step.fields.push_back({name, kind});
 }
 
@@ -197,6 +200,17 @@ void FieldWriter::add_tensor(const std::string& name, const std::vector<Mat3>& v
   for (const Mat3& t : values)
     voigt.push_back(to_voigt(0.5 * (t + t.transpose())));
   add_tensor(name, voigt);
+}
+
+void FieldWriter::add_matrix(const std::string& name, const std::vector<Mat3>& values) {
+  current(name, values.size());
+  std::vector<double> flat;
+  flat.reserve(9 * values.size());
+  for (const Mat3& t : values)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        flat.push_back(t(i, j));
+  write_doubles(name, XdmfKind::matrix, flat, 9);
 }
 
 void FieldWriter::add_int(const std::string& name, const std::vector<int>& values) {

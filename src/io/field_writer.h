@@ -22,6 +22,7 @@ namespace mpm_lig::io {
 //!         <scalar>            n
 //!         <vector>            n x 3 (z = 0 in 2D)
 //!         <tensor>            n x 6 Voigt xx yy zz xy xz yz (attribute "components")
+//!         <matrix>            n x 9 row-major xx xy xz yx yy yz zx zy zz (attribute "components")
 //!         <int field>         n, 32-bit integers (material ids, ...)
 //!
 //! The HDF5 file is opened for one step only and closed at `end_step`, and the XDMF file is
@@ -55,6 +56,9 @@ class FieldWriter {
   void add_tensor(const std::string& name, const std::vector<Voigt6>& values);
   //! One symmetric tensor per point (its symmetric part is written).
   void add_tensor(const std::string& name, const std::vector<Mat3>& values);
+  //! One general (non-symmetric) 3 x 3 tensor per point, row-major: exact, so that a
+  //! deformation gradient read back is the one the run used.
+  void add_matrix(const std::string& name, const std::vector<Mat3>& values);
   //! One integer per point (material id, body id, ...).
   void add_int(const std::string& name, const std::vector<int>& values);
 

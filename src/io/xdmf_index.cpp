@@ -80,6 +80,11 @@ std::string attribute(const XdmfField& field, std::size_t n, const std::string& 
       type = "Tensor6";
       item = tensor6_item(n, h5_path, indent);
       break;
+    case XdmfKind::matrix:
+      // XDMF's Tensor is row-major xx xy xz yx ... zz, the order the file keeps.
+      type = "Tensor";
+      item = hdf_item(rows + " 9", "Float", 8, h5_path, indent);
+      break;
     case XdmfKind::integer:
       type = "Scalar";
       item = hdf_item(rows, "Int", 4, h5_path, indent);

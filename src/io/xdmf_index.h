@@ -6,8 +6,9 @@
 
 namespace mpm_lig::io {
 
-//! How a point field is laid out in the HDF5 file (see FieldWriter).
-enum class XdmfKind { scalar, vector, tensor, integer };
+//! How a point field is laid out in the HDF5 file (see FieldWriter): `tensor` is a symmetric
+//! tensor in six Voigt columns, `matrix` a general 3 x 3 tensor in nine row-major columns.
+enum class XdmfKind { scalar, vector, tensor, matrix, integer };
 
 struct XdmfField {
   std::string name;

@@ -16,8 +16,9 @@ void ContinuumMaterial::set_stress(std::size_t point, const Mat3& sigma) {
   stress_.at(point) = 0.5 * (sigma + sigma.transpose());
 }
 
-void ContinuumMaterial::update(const std::vector<std::size_t>& points, const std::vector<Mat3>& dF,
-                               double /*dt*/, std::vector<Mat3>& stress) {
+void ContinuumMaterial::update(const MaterialStep& step, std::vector<Mat3>& stress) {
+  const std::vector<std::size_t>& points = step.points;
+  const std::vector<Mat3>& dF = step.dF;
   if (dF.size() != points.size())
     throw std::invalid_argument("material update: one deformation increment per point needed");
   stress.resize(points.size());

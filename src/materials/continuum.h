@@ -24,8 +24,7 @@ class ContinuumMaterial : public Material {
   void set_stress(std::size_t point, const Mat3& sigma) override;
   //! No symmetrisation: the rotation update leaves round-off asymmetry the run must keep.
   void restore_stress(std::size_t point, const Mat3& sigma) override { stress_.at(point) = sigma; }
-  void update(const std::vector<std::size_t>& points, const std::vector<Mat3>& dF, double dt,
-              std::vector<Mat3>& stress) override;
+  void update(const MaterialStep& step, std::vector<Mat3>& stress) override;
 
   const Elasticity& elasticity() const { return elasticity_; }
   //! Current stress of a point.

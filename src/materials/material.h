@@ -24,6 +24,17 @@ struct MaterialContext {
   TestHooks hooks;                 //!< fault injection asked for by the tests
 };
 
+//! What a material receives for one MPM step: a batch of its points and their deformation
+//! increments, in the same order. Whatever a material may need of the step is a member here,
+//! so that a new input reaches every material without changing update()'s signature.
+struct MaterialStep {
+  const std::vector<std::size_t>& points;  //!< the material's own point indices
+  //! One increment per point: F_new = dF F_old, spin included (after the MPM's kinematics
+  //! operators, docs/DESIGN.md §6).
+  const std::vector<Mat3>& dF;
+  double dt;  //!< the step [s]
+};
+
 //! The constitutive side of a material point, seen by the MPM solver.
 //!
 //! Batch-shaped on purpose: the solver hands over all points of a material at once, so
@@ -68,10 +79,9 @@ class Material {
   //! Put back a stress this material computed itself (a resumed run), bit for bit.
   virtual void restore_stress(std::size_t point, const Mat3& sigma) { set_stress(point, sigma); }
 
-  //! Advance `points` by their deformation increments `dF` (F_new = dF F_old, spin
-  //! included) over `dt`, and write their new Cauchy stresses (tension positive) to `stress`.
-  virtual void update(const std::vector<std::size_t>& points, const std::vector<Mat3>& dF,
-                      double dt, std::vector<Mat3>& stress) = 0;
+  //! Advance `step.points` by their increments `step.dF` over `step.dt`, and write their new
+  //! Cauchy stresses (tension positive) to `stress`, one per point in the batch's order.
+  virtual void update(const MaterialStep& step, std::vector<Mat3>& stress) = 0;
 
   //! Names of per-point scalar state variables for output (e.g. "plastic_strain").
   virtual std::vector<std::string> state_names() const { return {}; }

@@ -488,6 +488,9 @@ void read_output(const CaseNode& root, MpmCase& c, const MaterialSet& materials)
   if ((c.history_every = o.get_or<long>("history_every", 1)) < 1)
     o.fail("history_every", "must be >= 1");
   c.write_fields = o.get_or<bool>("fields", true);
+  c.write_deformation = o.get_or<bool>("deformation_gradient", false);
+  if (c.write_deformation && !c.write_fields)
+    o.fail("deformation_gradient", "is written into results.h5, which output.fields turns off");
   read_simple_shear(o, c);
   read_rve_snapshots(o, c, materials);
   if ((c.checkpoint_every = o.get_or<long>("checkpoint_every", 0)) < 0)

@@ -133,6 +133,9 @@ struct MpmCase {
   long history_every = 1;
   long checkpoint_every = 0;  //!< main-stage steps between checkpoints; 0: only on SIGTERM
   bool write_fields = true;
+  //! results.h5 also holds each point's F and the step's dF (output.deformation_gradient):
+  //! what an element test needs to replay a point's path (element/recorded_path.h).
+  bool write_deformation = false;
   SimpleShearOutput simple_shear;
   RveSnapshotOutput rve_snapshots;
 };

@@ -132,6 +132,7 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
       total_steps_(total_steps),
       material_ids_(c.material_ids),
       simple_shear_(c.simple_shear),
+      write_deformation_(c.write_deformation),
       fields_(open_fields(c, directory, solver.steps(), resume)),
       history_(history_file(directory, resume), history_columns(c), resume != nullptr),
       start_(std::chrono::steady_clock::now()),
@@ -194,6 +195,16 @@ void Recorder<D>::write_fields(const Solver<D>& solver) {
   fields_->add_scalar("deviatoric_strain", eps_q);
   fields_->add_scalar("volume", p.volume);
   fields_->add_int("material", material);
+  if (write_deformation_) {
+    fields_->add_matrix("deformation_gradient", p.deformation);
+    // The increment the step that ended here gave every material, exactly: a replay of a point
+    // recorded every step applies these bits instead of F_{k+1} F_k^-1, which differs from them
+    // by round-off (docs/methods.md §6). None yet before the first main-stage step.
+    if (solver.steps() == 0)
+      fields_->add_matrix("deformation_increment", std::vector<Mat3>(n, Mat3::Identity()));
+    else
+      fields_->add_matrix("deformation_increment", solver.increments());
+  }
   // Material state variables (plastic strain, ...): zero on points of other materials.
   for (std::size_t m = 0; m < solver.materials().size(); ++m) {
     const auto& mat = *solver.materials()[m];

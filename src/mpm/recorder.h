@@ -55,6 +55,7 @@ class Recorder {
   long output_every_, history_every_, total_steps_;
   std::vector<int> material_ids_;
   SimpleShearOutput simple_shear_;
+  bool write_deformation_;  //!< output.deformation_gradient
   // Fields before history: a resume prepares results.h5 first, so that a failure there (full
   // disk) leaves history.csv untouched too.
   std::unique_ptr<io::FieldWriter> fields_;

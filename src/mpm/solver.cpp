@@ -81,14 +81,14 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
       particles_(generate_particles<D>(c, materials_)),
       shape_(shape_registry().create(c.shape_function)),
       constraints_(c.constraints, grid_),
+      kinematics_(kinematics_operators<D>(c)),
       tractions_(c.tractions),
       gravity_(Eigen::Map<const Vec>(c.gravity.data())),
       musl_(c.musl),
       flip_(c.flip),
       damping_(c.damping),
       case_damping_(c.damping),
-      mass_scaling_(c.mass_scaling),
-      volumetric_smoothing_(c.volumetric_smoothing) {
+      mass_scaling_(c.mass_scaling) {
   for (const Footing& f : c.footings)
     footings_.emplace_back(f, grid_);
   traction_points_.resize(tractions_.size());
@@ -153,6 +153,8 @@ void Solver<D>::step() {
   if (musl_)
     remap_momentum();
   compute_deformation();
+  apply_kinematics();
+  accumulate_deformation();
   update_stress();
   for (auto& f : footings_)
     f.advance(time_, prescribed_scale_, dt_);
@@ -337,43 +339,20 @@ void Solver<D>::compute_deformation() {
       L.noalias() += grid_.velocity_new[w.node[a]] * w.gradient[a].transpose();
     increments_[p] = step_increment<D>(dt_ * L);
   }
-  if (volumetric_smoothing_)
-    smooth_volumetric_strain();
-  for (std::size_t p = 0; p < particles_.size(); ++p) {
-    particles_.deformation[p] = increments_[p] * particles_.deformation[p];
-    particles_.volume[p] *= increments_[p].determinant();
-  }
 }
 
 template <int D>
-void Solver<D>::smooth_volumetric_strain() {
-  // Cell-averaged volume change (an F-bar for MPM): the in-plane part of each dF is
-  // rescaled so its determinant is the volume-weighted mean of its cell. Removes the
-  // volumetric locking of incompressible plastic flow on low-order shape functions.
-  const std::size_t cells = [&] {
-    std::size_t n = 1;
-    for (int d = 0; d < D; ++d)
-      n *= grid_.cells(d);
-    return n;
-  }();
-  std::vector<double> weight(cells, 0.0), weighted(cells, 0.0);
-  std::vector<std::size_t> cell_of(particles_.size());
+void Solver<D>::apply_kinematics() {
+  const KinematicsContext<D> context{particles_, grid_, dt_};
+  for (const auto& op : kinematics_)
+    op->apply(context, increments_);
+}
+
+template <int D>
+void Solver<D>::accumulate_deformation() {
   for (std::size_t p = 0; p < particles_.size(); ++p) {
-    std::size_t id = 0, stride = 1;
-    for (int d = 0; d < D; ++d) {
-      const double xi = (particles_.position[p][d] - grid_.origin()[d]) / grid_.cell()[d];
-      const long c = std::clamp(static_cast<long>(std::floor(xi)), 0L, grid_.cells(d) - 1L);
-      id += c * stride;
-      stride *= grid_.cells(d);
-    }
-    cell_of[p] = id;
-    weight[id] += particles_.volume[p];
-    weighted[id] += particles_.volume[p] * increments_[p].determinant();
-  }
-  for (std::size_t p = 0; p < particles_.size(); ++p) {
-    const double j_bar = weighted[cell_of[p]] / weight[cell_of[p]];
-    const double j = increments_[p].determinant();
-    increments_[p].template topLeftCorner<D, D>() *= std::pow(j_bar / j, 1.0 / D);
+    particles_.deformation[p] = increments_[p] * particles_.deformation[p];
+    particles_.volume[p] *= increments_[p].determinant();
   }
 }
 
@@ -393,7 +372,7 @@ void Solver<D>::update_stress() {
                               describe_position(particles_.position[points[k]]) + " (materials[" +
                               std::to_string(m) + "]) " + problem);
     }
-    materials_[m]->update(batch_points_[m], batch_increments_[m], dt_, batch_stress_[m]);
+    materials_[m]->update({batch_points_[m], batch_increments_[m], dt_}, batch_stress_[m]);
     for (std::size_t k = 0; k < points.size(); ++k)
       particles_.stress[points[k]] = batch_stress_[m][k];
   }

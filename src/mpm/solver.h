@@ -10,6 +10,7 @@
 #include "mpm/constraints.h"
 #include "mpm/footing.h"
 #include "mpm/grid.h"
+#include "mpm/kinematics.h"
 #include "mpm/particles.h"
 #include "mpm/shape_function.h"
 
@@ -21,7 +22,8 @@ namespace mpm_lig::mpm {
 //!   compute_shape_functions → map_particles_to_grid (mass, momentum, forces) →
 //!   update_grid (damping, acceleration, constraints, footing) → map_grid_to_particles
 //!   (PIC/FLIP velocity, position) → remap_momentum (MUSL: nodal velocity from the updated
-//!   point momenta, constraints again) → compute_deformation (L, dF, F, volume) →
+//!   point momenta, constraints again) → compute_deformation (L, dF) → apply_kinematics (the
+//!   case's operators on dF, kinematics.h) → accumulate_deformation (F, volume) →
 //!   update_stress (one batch call per material). Diagram: docs/DESIGN.md §6.
 template <int D>
 class Solver {
@@ -78,8 +80,12 @@ class Solver {
   void apply_boundary_conditions(bool record);
   void map_grid_to_particles();
   void remap_momentum();
+  //! Each point's velocity gradient L and increment dF into increments_.
   void compute_deformation();
-  void smooth_volumetric_strain();
+  //! The kinematics phase: the case's operators rewrite increments_, in order.
+  void apply_kinematics();
+  //! F ← dF F and V ← det(dF) V with the increments the materials get.
+  void accumulate_deformation();
   void update_stress();
 
   MaterialSet materials_;  // first: the particles are added to it
@@ -88,6 +94,7 @@ class Solver {
   std::unique_ptr<ShapeFunction1d> shape_;
   NodeConstraints<D> constraints_;
   std::vector<RigidFooting<D>> footings_;
+  std::vector<std::unique_ptr<KinematicsOperator<D>>> kinematics_;
   std::vector<Traction> tractions_;
   std::vector<std::vector<std::size_t>> traction_points_;
   Vec gravity_;
@@ -97,7 +104,6 @@ class Solver {
   double damping_;
   double case_damping_;
   double mass_scaling_;
-  bool volumetric_smoothing_;
   double prescribed_scale_ = 1.0;  // 0 in the gravity stage
 
   double dt_ = 0.0;

@@ -72,6 +72,8 @@ class Rve {
   void write_restart(const std::string& file);
 
   //! The state beyond the engine's restart file: rotation Q, streaming gradient, counters.
+  //! Checkpoints and moves between ranks keep it field by field, as the table
+  //! coupling/rve_state_fields.h lists them (a new field: one line there).
   struct State {
     Mat3 rotation = Mat3::Identity();
     Mat3 streaming = Mat3::Zero();

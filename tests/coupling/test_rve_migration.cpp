@@ -73,7 +73,7 @@ TEST(RveMigration, MovedRveKeepsContactHistoryAndPlacement) {
   }
   // The move, as DemRveMaterial::migrate makes it (here both halves on one rank).
   const rve::Rve::State state = coupling::send_rve(*leaving, file);
-  double packed[coupling::kRveStateValues];
+  double packed[coupling::rve_state_width()];
   coupling::pack_state(state, packed);
   leaving.reset();
   auto moved =

@@ -18,7 +18,7 @@ inline Mat3 rotation(const Vec3& axis, double angle) {
 //! Advance one point of `m` by `dF` and return its stress.
 inline Mat3 step(Material& m, std::size_t point, const Mat3& dF) {
   std::vector<Mat3> out;
-  m.update({point}, {dF}, 1.0, out);
+  m.update({{point}, {dF}, 1.0}, out);
   return out[0];
 }
 

@@ -123,7 +123,7 @@ TEST(LinearElastic, UpdatesOnlyTheBatchItIsGivenInItsOrder) {
   a(0, 0) += 1e-4;
   b(1, 1) -= 1e-4;
   std::vector<Mat3> out(7, Mat3::Constant(99.0));  // resized to the batch
-  m.update({4, 1}, {a, b}, 0.1, out);
+  m.update({{4, 1}, {a, b}, 0.1}, out);
   ASSERT_EQ(out.size(), 2u);
   EXPECT_GT(out[0](0, 0), 0.0);
   EXPECT_LT(out[1](1, 1), 0.0);
@@ -131,12 +131,12 @@ TEST(LinearElastic, UpdatesOnlyTheBatchItIsGivenInItsOrder) {
   EXPECT_EQ(m.stress(1), out[1]);
   for (const std::size_t untouched : {0, 2, 3})
     EXPECT_EQ(m.stress(untouched), Mat3::Zero());
-  EXPECT_THROW(m.update({5}, {a}, 0.1, out), std::out_of_range);
-  EXPECT_THROW(m.update({0, 1}, {a}, 0.1, out), std::invalid_argument);
-  EXPECT_THROW(m.update({0}, {-Mat3::Identity()}, 0.1, out), std::runtime_error);
+  EXPECT_THROW(m.update({{5}, {a}, 0.1}, out), std::out_of_range);
+  EXPECT_THROW(m.update({{0, 1}, {a}, 0.1}, out), std::invalid_argument);
+  EXPECT_THROW(m.update({{0}, {-Mat3::Identity()}, 0.1}, out), std::runtime_error);
   Mat3 flipped = Mat3::Identity();
   flipped(0, 0) = -0.5;  // det dF < 0 with dF + I regular
-  EXPECT_THROW(m.update({0}, {flipped}, 0.1, out), std::runtime_error);
+  EXPECT_THROW(m.update({{0}, {flipped}, 0.1}, out), std::runtime_error);
 }
 
 }  // namespace

@@ -1,0 +1,21 @@
+#include "mpm/kinematics.h"
+
+#include "mpm/volumetric_smoothing.h"
+
+namespace mpm_lig::mpm {
+
+template <int D>
+std::vector<std::unique_ptr<KinematicsOperator<D>>> kinematics_operators(const MpmCase& c) {
+  // A new operator: its case key in read_analysis (case_reader.cpp) and one line here.
+  std::vector<std::unique_ptr<KinematicsOperator<D>>> operators;
+  if (c.volumetric_smoothing)
+    operators.push_back(std::make_unique<VolumetricSmoothing<D>>());
+  return operators;
+}
+
+template std::vector<std::unique_ptr<KinematicsOperator<2>>> kinematics_operators<2>(
+    const MpmCase&);
+template std::vector<std::unique_ptr<KinematicsOperator<3>>> kinematics_operators<3>(
+    const MpmCase&);
+
+}  // namespace mpm_lig::mpm
