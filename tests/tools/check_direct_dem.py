@@ -4,7 +4,8 @@
 usage: check_direct_dem.py bad WORK      bad input: exit 2, the key named, nothing created
        check_direct_dem.py affine        coarse-grained strain of an affinely deformed packing
        check_direct_dem.py run WORK      a real run of tests/tools/direct_dem_tiny.json (100
-                                         discs, to s/B = 0.05) and what it must reproduce
+                                         discs, to s/B = 0.12, two probes) and what it must
+                                         reproduce
        check_direct_dem.py resume WORK REFERENCE
                                          the same run stopped in its preparation (at a
                                          checkpoint) and in its loading (SIGTERM), resumed: the
@@ -36,9 +37,12 @@ def check(condition, message):
         failures.append(message)
 
 
-# The options of every real run here: checkpoints often enough to stop in each stage.
-RUN = ["--settlement", "0.05", "--snapshots", "0.05", "--fields-every", "0.025",
-       "--checkpoint-steps", "20000"]
+# The options of every real run here: checkpoints often enough to stop in each stage (the
+# loading, 42 000 steps to s/B = 0.12, holds at least two of them wherever the preparation
+# ended).
+SETTLEMENT = 0.12
+RUN = ["--settlement", str(SETTLEMENT), "--snapshots", "0.05", "--fields-every", "0.025",
+       "--checkpoint-steps", "20000", "--probes", "wedge", "far=1.5:1.2", "--probe-window", "3"]
 
 
 def run_tool(args, env=None, cwd=None):
@@ -87,6 +91,10 @@ def bad(work):
         ("settlement past the base", TINY, ["--settlement", "10"], "--settlement"),
         ("resume of nothing", TINY, ["--resume"], "no such folder"),
         ("unknown option, one line", TINY, ["--sead", "3"], "unrecognized arguments"),
+        ("no such probe place", TINY, ["--probes", "keel"], "--probes keel"),
+        ("a probe's place not numbers", TINY, ["--probes", "a=x:1"], "--probes a=x:1"),
+        ("a probe named twice", TINY, ["--probes", "far", "far=1:1"], "a name given twice"),
+        ("a probe window wider than the block", TINY, ["--probes", "far"], "--probe-window"),
     ]
     for name, case, extra, key in cases:
         out = os.path.join(work, "out_" + name.replace(" ", "_"))
@@ -284,6 +292,40 @@ def real(work):
                            os.path.join(work, "fields.png")], capture_output=True, text=True)
     check(plot.returncode == 0, f"plot_fields.py reads results.h5 ({plot.stdout.strip()[:100]})")
     check(os.path.isfile(os.path.join(out, "force_chains.png")), "force_chains.png drawn")
+    probes_checked(out, s, prep)
+
+
+def probes_checked(out, s, prep):
+    """The grains' own stress (Love-Weber, what the probes write) against the engine's virial
+    on the whole prepared cell, and the probe rows."""
+    lw = prep["love_weber"]
+    p = -0.5 * (prep["sxx"] + prep["syy"])
+    worst = max(abs(lw["sxx"] - lw["engine_sxx"]), abs(lw["syy"] - lw["engine_syy"]))
+    check(worst <= 1e-5 * p and abs(lw["sxy"]) < 0.05 * p,
+          f"the prepared cell's Love-Weber stress equals the engine's virial within 1e-5 p "
+          f"({worst / p:.2e} p; the dump's digits)")
+    rows = np.genfromtxt(os.path.join(out, "probes.csv"), delimiter=",", names=True,
+                         dtype=None, encoding=None)
+    every = 0.005
+    history = np.genfromtxt(os.path.join(out, "history.csv"), delimiter=",", names=True)
+    row_step = float(np.max(np.diff(history["s_over_B"])))
+    for name in ("wedge", "far"):
+        r = rows[rows["probe"] == name]
+        want = int(round(SETTLEMENT / every)) + 1
+        due = every * np.arange(len(r))
+        check(len(r) == want and np.all(r["s_over_B"] >= due - 1e-9) and
+              np.all(r["s_over_B"] < due + row_step),
+              f"probe {name}: {len(r)} rows (want {want}), each at the first history row from "
+              f"k x {every} s/B")
+        first = np.array([[r["F11"][0], r["F12"][0]], [r["F21"][0], r["F22"][0]]])
+        check(np.abs(first - np.eye(2)).max() < 1e-12 and np.all(r["F11"] * r["F22"] -
+                                                                 r["F12"] * r["F21"] > 0),
+              f"probe {name}: F = I at the start of loading, det F > 0 after")
+        check(np.all(r["p"] > 0) and np.all(r["grains"] > 3) and np.all(r["contacts"] > 0),
+              f"probe {name}: compressed grains in its window ({r['grains'][0]} grains)")
+    # the footing pushes the wedge down: its vertical stretch falls below 1
+    wedge = rows[rows["probe"] == "wedge"]
+    check(wedge["F22"][-1] < 1.0, f"the wedge is compressed (F22 = {wedge['F22'][-1]:.4f})")
 
 
 def resume(work, reference):
@@ -316,6 +358,9 @@ def resume(work, reference):
     same = open(os.path.join(out, "history.csv"), "rb").read() == \
         open(os.path.join(reference, "tiny", "history.csv"), "rb").read()
     check(same, "stopped twice and resumed: history.csv bit-identical to the uninterrupted run's")
+    same = open(os.path.join(out, "probes.csv"), "rb").read() == \
+        open(os.path.join(reference, "tiny", "probes.csv"), "rb").read()
+    check(same, "stopped twice and resumed: probes.csv bit-identical to the uninterrupted run's")
     mine, theirs = (json.load(open(os.path.join(d, "summary.json"))) for d in
                     (out, os.path.join(reference, "tiny")))
     check(mine["particle_steps"] == theirs["particle_steps"] and

@@ -600,8 +600,13 @@ def interrupt_loading(work):
     Ctrl-C'd while it reads its --gather file (a FIFO nobody writes)."""
     slow = os.path.join(work, "slow")
     os.makedirs(os.path.join(slow, "numpy"))
-    stall = ("import os, time\nopen(os.environ['SLOW_IMPORT_MARKER'], 'w').close()\n"
-             "try:\n    time.sleep(60)\nexcept KeyboardInterrupt:\n    lost = True\n")
+    # The marker is made inside the try (the signal, sent once it exists, lands there), and a
+    # second import after an interrupted one does not stall again (it would wait a minute on
+    # a loaded machine where the signal came before the first one reached its sleep).
+    stall = ("import os, time\nmarker = os.environ['SLOW_IMPORT_MARKER']\n"
+             "first = not os.path.exists(marker)\n"
+             "try:\n    if first:\n        open(marker, 'w').close()\n        time.sleep(60)\n"
+             "except KeyboardInterrupt:\n    lost = True\n")
     with open(os.path.join(slow, "argparse.py"), "w") as f:
         f.write(stall + "    raise\n")
     with open(os.path.join(slow, "numpy", "__init__.py"), "w") as f:

@@ -53,9 +53,10 @@ import numpy as np
 from mpm_lig_post import cli
 from mpm_lig_post.coarse_grain import FieldOutput
 from mpm_lig_post.direct_dem.case import check_memory, problem
-from mpm_lig_post.direct_dem.checkpoint import (KEPT, Stopped, case_digest, fill_options,
-                                                publish_settled, restore_outputs,
+from mpm_lig_post.direct_dem.checkpoint import (KEPT, OWN_FILES, Stopped, case_digest,
+                                                fill_options, publish_settled, restore_outputs,
                                                 stop_on_signals, verify_checkpoint)
+from mpm_lig_post.direct_dem.probes import check_probes
 from mpm_lig_post.direct_dem.report import chains_picture, summarise
 from mpm_lig_post.direct_dem.run import Run
 from mpm_lig_post.errors import InputError
@@ -65,8 +66,6 @@ from mpm_lig_post.tables import read_json
 
 LOCK = "direct_dem.lock"
 EXIT_ENGINE, EXIT_STOPPED = 3, 4
-OWN_FILES = ("history.csv", "summary.json", "results.h5", "results.xdmf", "checkpoint.json",
-             "settled.json", "settled.restart", "reference.npz", "checkpoint_results.h5")
 
 # ----------------------------------------------------------------------------- command line
 def arguments():
@@ -94,6 +93,16 @@ def arguments():
                    help="DEM steps between checkpoints (default: about 3e9 particle-steps)")
     p.add_argument("--void-ratio-tolerance", type=cli.positive, help="the prepared void ratio's "
                    "tolerance (default: the case's preparation.void_ratio_tolerance, or 0.005)")
+    p.add_argument("--probes", nargs="+", metavar="NAME[=X:DEPTH]",
+                   help="windows of the RVE's size that follow their grains, with their F and "
+                   "the grains' own stress in probes.csv (named: wedge band passive far; or "
+                   "NAME=X:DEPTH, the centre in footing widths from the axis and below the "
+                   "surface), for tools/replay_direct_dem.py")
+    p.add_argument("--probes-every", type=cli.positive,
+                   help="s/B between probe rows (default 0.005)")
+    p.add_argument("--probe-window", type=cli.positive, metavar="D",
+                   help="the probes' window side in grain diameters (default: the side of the "
+                   "case's RVE)")
     p.add_argument("--stop-after-minutes", type=cli.positive,
                    help="stop at the first checkpoint after this long (continue with --resume)")
     g = p.add_mutually_exclusive_group()
@@ -148,6 +157,7 @@ def main():
         raise InputError(f"--tiles {a.tiles}: --scale {a.scale:g} must be a multiple of it (each "
                          "tile is a block of the case's own size or a multiple)")
     check_memory(pb, a.scale)
+    check_probes(pb, a)
     deepest = pb["box"][1] - 8 * pb["rmax"]  # above the frozen base (2 d_max) and a d_max more
     if a.settlement * pb["B"] > deepest:
         raise InputError(f"--settlement {a.settlement:g}: the footing would pass s/B = "

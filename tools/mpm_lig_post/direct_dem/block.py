@@ -98,6 +98,28 @@ class Block:
         got = (data[:, 0].astype(int), data[:, 1:3], data[:, 3])
         return got + (data[:, 4:7],) if velocities else got
 
+    def grains_moving(self):
+        """(ids, centres n x 2, radii, {"mass": n, "velocity": n x 2}) sorted by id."""
+        path = os.path.join(self.out, "grains.tmp")
+        self.send(f'write_dump all custom "{path}" id x y radius mass vx vy modify sort id',
+                  self.grains * 10)
+        data = np.loadtxt(path, skiprows=9, ndmin=2)
+        os.remove(path)
+        return (data[:, 0].astype(int), data[:, 1:3], data[:, 3],
+                {"mass": data[:, 4], "velocity": data[:, 5:7]})
+
+    def contacts_now(self):
+        """(first ids, second ids, forces n x 2 on the first grain from the second) of the
+        grain-grain contacts now (the engine's pair/gran/local list of the last step)."""
+        path = os.path.join(self.out, "contacts.tmp")
+        self.send(f'write_dump all local "{path}" c_pl[1] c_pl[2] c_pl[4] c_pl[5]',
+                  self.grains * 10)
+        loc = np.loadtxt(path, skiprows=9, ndmin=2)
+        os.remove(path)
+        if loc.size == 0:
+            return np.zeros(0, int), np.zeros(0, int), np.zeros((0, 2))
+        return loc[:, 0].astype(int), loc[:, 1].astype(int), loc[:, 2:4]
+
     def surcharge_update(self):
         """Forces q_s t w on the top soil grain of each w-wide column over [B/2, lx]."""
         pb = self.pb
@@ -191,10 +213,13 @@ class Block:
             self.send("run 0")  # the force sums current before the first history row
             with open(hist, "w") as f:
                 f.write(",".join(HISTORY) + "\n")
-            self.load_steps = self.next_field = self.next_snap = 0
+            self.load_steps = self.next_field = self.next_snap = self.next_probe = 0
             self.write_row(hist, self.history_row(0.0))
+            if self.probes:
+                self.probes.header(os.path.join(self.out, "probes.csv"))
         outs = [k * a.fields_every for k in range(int(a.settlement / a.fields_every + 1e-9) + 1)]
         snaps = sorted(a.snapshots)
+        self.probe(self.load_steps * ds / pb["B"])
         started, first_step = time.time(), self.load_steps  # the ETA from this sitting's rate
         while self.load_steps < total:
             n = min(a.surcharge_every, total - self.load_steps)
@@ -211,12 +236,24 @@ class Block:
             while self.next_snap < len(snaps) and sB >= snaps[self.next_snap] - 1e-9:
                 self.snapshot()
                 self.next_snap += 1
+            self.probe(sB)
             done = self.load_steps - first_step
             left = (total - self.load_steps) / max(done, 1) * (time.time() - started)
             self.progress(f"s/B = {sB:.3f}, q/q_s = {row['q_over_qs']:.2f}, "
                           f"{self.load_steps}/{total} steps, ETA {left / 60:.1f} min")
             self.safe_point("load")
         return True
+
+    def probe(self, sB):
+        """The probes' rows when one is due (every --probes-every s/B, from s = 0)."""
+        if not self.probes:
+            return
+        every = self.args.probes_every
+        if sB >= self.next_probe * every - 1e-9:
+            self.send("run 0")  # the contact list of this state
+            self.probes.record(sB * self.pb["B"])
+            while self.next_probe * every <= sB + 1e-9:
+                self.next_probe += 1
 
     def write_row(self, path, row):
         with open(path, "a") as f:
@@ -243,16 +280,13 @@ class Block:
         prefix = os.path.join(folder, f"grains_{self.load_steps:09d}")
         self.send("run 0")  # forces and the contact list of one state
         ids, xy, r = self.grains_now()
-        path = prefix + ".tmp"
-        self.send(f'write_dump all local "{path}" c_pl[1] c_pl[2] c_pl[4] c_pl[5]')
-        loc = np.loadtxt(path, skiprows=9, ndmin=2)
-        os.remove(path)
+        id1, id2, force = self.contacts_now()
         where = {int(i): k for k, i in enumerate(ids)}
-        first = xy[[where[int(i)] for i in loc[:, 0]]]
-        second = xy[[where[int(i)] for i in loc[:, 1]]]
-        np.savez(prefix + "_contacts.npz", id1=loc[:, 0].astype(int), id2=loc[:, 1].astype(int),
-                 fx=loc[:, 2], fy=loc[:, 3], footing_force=self.history_row(0.0)["footing_force"])
-        loc = np.column_stack([first, second, loc[:, 2:4]])
+        first = xy[[where[int(i)] for i in id1]].reshape(-1, 2)
+        second = xy[[where[int(i)] for i in id2]].reshape(-1, 2)
+        np.savez(prefix + "_contacts.npz", id1=id1, id2=id2, fx=force[:, 0], fy=force[:, 1],
+                 footing_force=self.history_row(0.0)["footing_force"])
+        loc = np.column_stack([first, second, force])
         with open(prefix + "_grains.vtk", "w") as f:
             f.write("# vtk DataFile Version 3.0\ngrains\nASCII\nDATASET POLYDATA\n"
                     f"POINTS {len(xy)} double\n")

@@ -17,12 +17,18 @@ FORMAT = 2             # checkpoint.json layout
 # stop and which executable runs may change.
 KEPT = {"scale": 1.0, "tiles": 1, "seed": 11, "speed_factor": 1.0, "np": 1, "fields_every": 0.05,
         "snapshots": [0.1, 0.5], "surcharge_every": 500, "checkpoint_steps": None,
-        "void_ratio_tolerance": None}
+        "void_ratio_tolerance": None, "probes": [], "probes_every": 0.005,
+        "probe_window": None}
+# Options added after runs were checkpointed without them: such a checkpoint ran with these
+# values (a resume of it keeps them).
+ADDED_KEPT = {"probes": [], "probes_every": 0.005, "probe_window": None}
 # Everything the run keeps in its checkpoint besides the engine's restart.
 STATE = ("steps", "particle_steps", "grains", "solid", "lx", "ly", "load_steps", "next_field",
          "next_snap", "prepared", "settled", "prep_state", "servo_state", "settle_state",
          "next_checkpoint", "base_ids", "footing_ids", "top_fixes", "engine_cpu", "python_cpu",
          "wall")
+# State added later, with its value in a checkpoint written before it.
+ADDED_STATE = {"next_probe": 0}
 # Default checkpoint interval: about ten minutes of one core's stepping (5e6 particle-steps/s).
 CHECKPOINT_WORK = 3e9
 
@@ -52,6 +58,8 @@ def stop_on_signals():
 def fill_options(a, pb, kept=None, source=None):
     """The options a run's results depend on: given, from `kept` (a checkpoint's), or the
     defaults. InputError naming an option given otherwise than `source` recorded."""
+    if kept is not None:
+        kept = {**ADDED_KEPT, **kept}
     for key, default in KEPT.items():
         given = getattr(a, key)
         if kept is not None and key in kept:
@@ -100,6 +108,8 @@ def verify_checkpoint(out, a, case_digest, name="checkpoint.json"):
                      prefix=True)
         if "fields" in files:
             check_digest(out, "checkpoint_results.h5", files["fields"])
+        if "probes" in files:
+            check_digest(out, "probes.csv", files["probes"], prefix=True)
     return record
 
 
@@ -115,7 +125,8 @@ def case_digest(path):
 
 
 OWN_FILES = ("history.csv", "summary.json", "results.h5", "results.xdmf", "checkpoint.json",
-             "settled.json", "settled.restart", "reference.npz", "checkpoint_results.h5")
+             "settled.json", "settled.restart", "reference.npz", "checkpoint_results.h5",
+             "probes.csv")
 
 
 def restore_outputs(out, record):
@@ -124,6 +135,9 @@ def restore_outputs(out, record):
     files = record["files"]
     with open(os.path.join(out, "history.csv"), "r+b") as f:
         f.truncate(files["history"]["bytes"])
+    if "probes" in files:
+        with open(os.path.join(out, "probes.csv"), "r+b") as f:
+            f.truncate(files["probes"]["bytes"])
     if "fields" in files:
         shutil.copyfile(os.path.join(out, "checkpoint_results.h5"), os.path.join(out, "results.h5"))
 

@@ -9,6 +9,7 @@ import numpy as np
 from mpm_lig_post.direct_dem.case import contact_friction
 from mpm_lig_post.direct_dem.packing import draw_radii, fabric, place, tile
 from mpm_lig_post.liggghts import render
+from mpm_lig_post.love_weber import window_stress
 
 CHUNK = 100            # servo steps per update (src/rve/consolidation.cpp kChunk)
 AT_REST = 2e-3         # kinetic / elastic energy of a relaxed packing (kAtRest)
@@ -127,7 +128,8 @@ class Preparation:
                                                "grains", "fabric")}
             self.prepared["fabric"] = self.fabric_now(o)
         self.prepared.update(void_ratio=e, sxx=o["sxx"], syy=o["syy"], steps=self.steps,
-                             cell=[o["lx"], o["ly"]], grains=self.grains)
+                             cell=[o["lx"], o["ly"]], grains=self.grains,
+                             love_weber=self.love_weber_now(o))
         self.check_void_ratio(e)
         self.progress(f"prepared: e = {e:.4f} (target {target}), sigma = "
                       f"{-o['sxx'] / 1e3:.1f} / {-o['syy'] / 1e3:.1f} kPa, {self.steps} steps",
@@ -154,6 +156,19 @@ class Preparation:
         _, xy, r = self.grains_now()
         origin = self.session.values("BOX", ["xlo", "ylo"])
         return fabric(xy, r, (o["lx"], o["ly"]), origin)
+
+    def love_weber_now(self, o):
+        """The whole periodic cell's stress from its contacts (love_weber.py, what the probes
+        use) beside the engine's virial: the two must agree (tests/tools/check_direct_dem.py)."""
+        self.send("run 0")  # the contact list of this state
+        ids, xy, r = self.grains_now()
+        index = {int(i): k for k, i in enumerate(ids)}
+        first, second, force = self.contacts_now()
+        contacts = ([index[int(i)] for i in first], [index[int(i)] for i in second], force)
+        sigma = window_stress(np.ones(len(ids), bool), xy, r, contacts, o["lx"] * o["ly"],
+                              self.pb["thickness"], period=(o["lx"], o["ly"]))
+        return {"sxx": float(sigma[0, 0]), "syy": float(sigma[1, 1]), "sxy": float(sigma[0, 1]),
+                "engine_sxx": o["sxx"], "engine_syy": o["syy"]}
 
     def repeat_cell(self, tiles):
         """The prepared periodic cell repeated tiles x tiles times in a new engine (a data

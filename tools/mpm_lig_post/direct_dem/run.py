@@ -6,8 +6,9 @@ import resource
 import time
 
 from mpm_lig_post.direct_dem.block import Block
-from mpm_lig_post.direct_dem.checkpoint import (FORMAT, KEPT, STATE, Stopped, blocked_signals,
-                                                record_digest)
+from mpm_lig_post.direct_dem.checkpoint import (ADDED_STATE, FORMAT, KEPT, STATE, Stopped,
+                                                blocked_signals, record_digest)
+from mpm_lig_post.direct_dem.probes import Probes
 from mpm_lig_post.direct_dem.preparation import Preparation
 from mpm_lig_post.liggghts import EngineFailed, Session, material_input, render
 from mpm_lig_post.run_folder import digest, write_json_atomic
@@ -20,7 +21,8 @@ class Run(Preparation, Block):
         self.particle_steps = 0.0
         self.grains = 0
         self.solid = self.lx = self.ly = None
-        self.load_steps = self.next_field = self.next_snap = 0
+        self.load_steps = self.next_field = self.next_snap = self.next_probe = 0
+        self.probes = Probes(self, args.probes) if args.probes else None
         self.prepared = self.settled = None
         self.prep_state = self.servo_state = self.settle_state = None
         self.next_checkpoint = args.checkpoint_steps
@@ -109,6 +111,9 @@ class Run(Preparation, Block):
             history = os.path.join(self.out, "history.csv")
             if os.path.isfile(history):
                 files["history"] = digest(history)
+            probes = os.path.join(self.out, "probes.csv")
+            if os.path.isfile(probes):
+                files["probes"] = digest(probes)
             fields = os.path.join(self.out, "results.h5")
             if os.path.isfile(fields):
                 shutil.copyfile(fields, os.path.join(self.out, "checkpoint_results.h5"))
@@ -117,7 +122,7 @@ class Run(Preparation, Block):
             if os.path.isfile(reference):
                 files["reference"] = digest(reference)
             own = resource.getrusage(resource.RUSAGE_SELF)
-            state = {k: getattr(self, k) for k in STATE}
+            state = {k: getattr(self, k) for k in (*STATE, *ADDED_STATE)}
             state.update(python_cpu=self.python_cpu + own.ru_utime + own.ru_stime,
                          wall=self.wall + time.time() - self.start)
             record = {"format": FORMAT, "stage": stage, "case": self.args.case_digest,
@@ -140,6 +145,8 @@ class Run(Preparation, Block):
         sitting = (self.python_cpu, self.wall)
         for k in STATE:
             setattr(self, k, record["state"][k])
+        for k, before in ADDED_STATE.items():
+            setattr(self, k, record["state"].get(k, before))
         if cpu_counted:  # the same sitting: its own seconds are counted at its end
             self.python_cpu, self.wall = sitting
         self.stage = record["stage"]

@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Checks of tools/replay_direct_dem.py on the tiny direct-DEM run of check_direct_dem.py.
+
+usage: check_replay_direct_dem.py WORK RUN MPM_LIG
+  RUN: a direct-DEM run of tests/tools/direct_dem_tiny.json with --probes (direct_dem_real's)
+
+- bad input: exit 2, named, on one line, the output folder not created;
+- a replay of the probe "far" on one RVE: exit 0, one RVE history row per probe row, and the
+  RVE's Hencky strain at every row equal to 1/2 ln(F F^T) of the probe's F (the path reached
+  the RVE as the grains went through it), replay.json and replay.png written.
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOL = os.path.join(HERE, "..", "..", "tools", "replay_direct_dem.py")
+TINY = os.path.join(HERE, "direct_dem_tiny.json")
+
+failures = []
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message)
+    if not condition:
+        failures.append(message)
+
+
+def tool(args):
+    p = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
+    return p.returncode, p.stdout, p.stderr
+
+
+def hencky_left(F):
+    """1/2 ln(F F^T) of a 2 x 2 F."""
+    values, vectors = np.linalg.eigh(F @ F.T)
+    return vectors @ np.diag(0.5 * np.log(values)) @ vectors.T
+
+
+def main():
+    work, run, mpm_lig = sys.argv[1:4]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    empty = os.path.join(work, "no_probes")
+    os.makedirs(empty)
+    full = os.path.join(work, "not_empty")
+    os.makedirs(full)
+    open(os.path.join(full, "x"), "w").close()
+    cases = [
+        ("a run without probes", [TINY, empty, "--mpm-lig", mpm_lig], "probes.csv"),
+        ("no such probe", [TINY, run, "--probes", "keel", "--mpm-lig", mpm_lig],
+         "--probes keel"),
+        ("no such mpm_lig", [TINY, run, "--mpm-lig", "/nonexistent/mpm_lig"], "--mpm-lig"),
+        ("an output folder that is not empty", [TINY, run, "--mpm-lig", mpm_lig], "not empty"),
+        ("a seed given twice", [TINY, run, "--seeds", "3", "3", "--mpm-lig", mpm_lig],
+         "--seeds"),
+    ]
+    for name, args, key in cases:
+        out = full if "not empty" in name else os.path.join(work, "out_" + name.replace(" ", "_"))
+        code, _, stderr = tool(args + ["-o", out])
+        check(code == 2 and key in stderr and len(stderr.strip().splitlines()) == 1
+              and "Traceback" not in stderr, f"{name}: exit {code}, one line naming '{key}': "
+              f"{stderr.strip()[:150]}")
+        if "not empty" not in name:
+            check(not os.path.exists(out), f"{name}: no output folder created")
+    out = os.path.join(work, "replay")
+    code, stdout, stderr = tool([TINY, run, "-o", out, "--mpm-lig", mpm_lig, "--probes", "far",
+                                 "--seeds", "11"])
+    check(code == 0, f"the replay of probe far ends with exit 0 ({stderr.strip()[-200:]})")
+    if code != 0:
+        return
+    rows = np.genfromtxt(os.path.join(run, "probes.csv"), delimiter=",", names=True,
+                         dtype=None, encoding=None)
+    far = rows[rows["probe"] == "far"]
+    history = np.genfromtxt(os.path.join(out, "runs", "far_s11", "history.csv"), delimiter=",",
+                            names=True)
+    check(len(history) == len(far), f"{len(history)} RVE rows for {len(far)} probe rows")
+    worst = 0.0
+    for k in range(min(len(history), len(far))):
+        F = np.array([[far["F11"][k], far["F12"][k]], [far["F21"][k], far["F22"][k]]])
+        want = hencky_left(F)
+        got = np.array([[history["e_xx"][k], history["e_xy"][k]],
+                        [history["e_xy"][k], history["e_yy"][k]]])
+        worst = max(worst, np.abs(got - want).max())
+    check(worst < 1e-9, f"the RVE's Hencky strain is 1/2 ln(F F^T) of the probe's F at every "
+          f"row (worst {worst:.2e})")
+    report = json.load(open(os.path.join(out, "replay.json")))
+    r = report["probes"]["far"]
+    check(r["rows"] == len(far) and "11" in r["seeds"] and
+          np.isfinite(r["seeds"]["11"]["mean_abs_dp_over_p0"]),
+          "replay.json: the probe's rows and the seed's differences")
+    check(os.path.getsize(os.path.join(out, "replay.png")) > 0, "replay.png drawn")
+    check("| far |" in stdout, "the table printed")
+
+
+if __name__ == "__main__":
+    main()
+    print(f"{len(failures)} failure(s)")
+    sys.exit(1 if failures else 0)

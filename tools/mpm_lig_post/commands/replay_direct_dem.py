@@ -1,0 +1,238 @@
+"""The RVE against the grains on the grains' own path: each probe of a direct DEM
+(tools/direct_dem.py --probes) replayed on RVEs of the same grains, stress beside stress.
+
+usage: replay_direct_dem.py CASE.json RUN_DIR -o OUT_DIR [--mpm-lig build/mpm_lig]
+                            [--probes NAME ...] [--seeds 11 12 13] [--upto S] [--dpi N]
+
+RUN_DIR/probes.csv holds, for each probe (a window of the RVE's size that follows its grains),
+the window's deformation gradient F from the start of loading and its grains' own stress
+(Love-Weber) every few s/B. For each probe and each RVE packing seed this tool writes F as a
+recorded path (OUT_DIR/paths/PROBE.csv), an element test of "test": "recorded_path" on CASE's
+rve node with that seed (OUT_DIR/cases/PROBE_sSEED.json) and runs it with mpm_lig
+(OUT_DIR/runs/PROBE_sSEED/): the RVE goes through the grains' deformation with the coupling's
+increments and sub-step rule, from its own prepared packing. It then prints, per probe, the
+grains' and the RVEs' largest stress ratio q/p (2D: Mohr-circle radius over in-plane mean
+stress) and where, the RVEs' mean over seeds and its spread, and the mean and largest
+difference of p and of q/p along the path (p over the preparation pressure p0); writes
+OUT_DIR/replay.json and OUT_DIR/replay.png (q/p and p/p0 against s/B, grains and RVEs).
+Exit 0 done, 1 an element test failed (its log named), 2 bad input (before anything runs).
+"""
+from mpm_lig_post.requirements import require
+
+require("numpy", "matplotlib")
+
+import copy  # noqa: E402
+import json  # noqa: E402
+import os  # noqa: E402
+import subprocess  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from mpm_lig_post import cli, figures  # noqa: E402
+from mpm_lig_post.direct_dem.case import problem  # noqa: E402
+from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DEFAULT_MPM_LIG = os.path.normpath(os.path.join(HERE, "..", "..", "..", "build", "mpm_lig"))
+PROBE_COLUMNS = ("s_over_B", "time", "F11", "F12", "F21", "F22", "s_xx", "s_yy", "s_xy", "p",
+                 "q")
+
+
+def read_probes(run):
+    """{probe: {column: array}} from RUN/probes.csv, rows in order."""
+    path = os.path.join(run, "probes.csv")
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: no probes (run tools/direct_dem.py with --probes)")
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+        rows = [line.strip().split(",") for line in f if line.strip()]
+    missing = [c for c in ("probe",) + PROBE_COLUMNS if c not in header]
+    if missing:
+        raise InputError(f"{path}: no column {missing[0]}")
+    probes = {}
+    for k, row in enumerate(rows):
+        if len(row) != len(header):
+            raise InputError(f"{path}: row {k + 1} has {len(row)} values, the header "
+                             f"{len(header)}")
+        probes.setdefault(row[0], []).append(row)
+    out = {}
+    for name, got in probes.items():
+        try:
+            table = {c: np.array([float(r[header.index(c)]) for r in got]) for c in PROBE_COLUMNS}
+        except ValueError as e:
+            raise InputError(f"{path}: probe {name}: {e}") from None
+        if len(got) < 2:
+            raise InputError(f"{path}: probe {name} has {len(got)} row; a path needs two")
+        out[name] = table
+    if not out:
+        raise InputError(f"{path}: no probe rows")
+    return out
+
+
+def write_path(path, table, rows):
+    with open(path, "w") as f:
+        f.write("# the deformation gradient of a direct-DEM probe window (replay_direct_dem.py)\n")
+        f.write("time,F11,F12,F21,F22\n")
+        for k in range(rows):
+            f.write(",".join("%.17g" % table[c][k] for c in ("time", "F11", "F12", "F21", "F22"))
+                    + "\n")
+
+
+def element_case(rve, seed, path_csv, title):
+    node = copy.deepcopy(rve)
+    node["seed"] = seed
+    node.pop("restart_file", None)
+    return {"title": title, "rve": node,
+            "analysis": {"type": "element_test", "test": "recorded_path",
+                         "path": {"csv": path_csv}, "save_restart": False}}
+
+
+def replay(mpm_lig, case_path, out):
+    """Run one element test; its history (exit 1 naming the log when it fails)."""
+    log = out + ".log"
+    with open(log, "w") as f:
+        code = subprocess.call([mpm_lig, case_path, "--output", out], stdout=f,
+                               stderr=subprocess.STDOUT)
+    if code != 0:
+        raise RuntimeError(f"{case_path}: mpm_lig exited {code} (see {log})")
+    history = read_history(os.path.join(out, "history.csv"))
+    require_columns(history, ("s_xx", "s_yy", "s_xy", "p", "q"), out)
+    return history
+
+
+def ratio(p, q):
+    return np.where(p > 0, q / np.maximum(p, 1e-300), np.nan)
+
+
+def compare(grains, rves, p0):
+    """The numbers of one probe: the grains' and each RVE's peak q/p, differences on the path."""
+    g_ratio = ratio(grains["p"], grains["q"])
+    k = int(np.nanargmax(g_ratio))
+    row = {"grains_peak_ratio": float(g_ratio[k]), "grains_peak_at": float(grains["s_over_B"][k]),
+           "grains_final_p_over_p0": float(grains["p"][-1] / p0), "seeds": {}}
+    peaks = []
+    for seed, h in rves.items():
+        n = min(len(h["p"]), len(grains["p"]))
+        r_ratio = ratio(h["p"][:n], h["q"][:n])
+        j = int(np.nanargmax(r_ratio))
+        dp = np.abs(h["p"][:n] - grains["p"][:n]) / p0
+        dr = np.abs(r_ratio - g_ratio[:n])
+        row["seeds"][seed] = {"peak_ratio": float(r_ratio[j]),
+                              "peak_at": float(grains["s_over_B"][j]),
+                              "final_p_over_p0": float(h["p"][n - 1] / p0),
+                              "mean_abs_dp_over_p0": float(np.nanmean(dp)),
+                              "max_abs_dp_over_p0": float(np.nanmax(dp)),
+                              "mean_abs_d_ratio": float(np.nanmean(dr)),
+                              "max_abs_d_ratio": float(np.nanmax(dr))}
+        peaks.append(r_ratio[j])
+    row["rve_peak_ratio_mean"] = float(np.mean(peaks))
+    row["rve_peak_ratio_std"] = float(np.std(peaks, ddof=1)) if len(peaks) > 1 else 0.0
+    return row
+
+
+def main():
+    p = cli.ArgumentParser(description=__doc__.split("\n")[1])
+    p.add_argument("case", metavar="CASE.json", help="the footing case the direct DEM ran")
+    p.add_argument("run", metavar="RUN_DIR", help="a direct-DEM run with probes.csv")
+    p.add_argument("-o", "--output", required=True, metavar="OUT_DIR")
+    p.add_argument("--mpm-lig", default=DEFAULT_MPM_LIG, help="the mpm_lig executable "
+                   "(default: build/mpm_lig of this checkout)")
+    p.add_argument("--probes", nargs="+", help="which probes (default: all in probes.csv)")
+    p.add_argument("--seeds", type=cli.non_negative_int, nargs="+",
+                   help="RVE packing seeds (default: the case's rve seed and the next two)")
+    p.add_argument("--upto", type=cli.positive, help="replay rows up to this s/B (default all)")
+    p.add_argument("--dpi", type=cli.dpi, default=150)
+    a = p.parse_args()
+    case = read_json(a.case)
+    pb = problem(case, a.case, 1.0)
+    rve, p0 = pb["rve"], pb["p0"]
+    if not (os.path.isfile(a.mpm_lig) and os.access(a.mpm_lig, os.X_OK)):
+        raise InputError(f"--mpm-lig {a.mpm_lig}: no such executable (build it: cmake --build "
+                         "build --target mpm_lig)")
+    probes = read_probes(a.run)
+    names = a.probes or sorted(probes)
+    for name in names:
+        if name not in probes:
+            raise InputError(f"--probes {name}: {a.run}/probes.csv has {', '.join(sorted(probes))}")
+    seeds = a.seeds or [int(rve.get("seed", 1)) + k for k in range(3)]
+    if len(set(seeds)) != len(seeds):
+        raise InputError("--seeds: a seed given twice")
+    out = os.path.abspath(a.output)
+    cli.writable_folder(out)
+    if os.path.isdir(out) and os.listdir(out):
+        raise InputError(f"{out}: not empty (choose a new folder)")
+    for sub in ("paths", "cases", "runs"):
+        os.makedirs(os.path.join(out, sub), exist_ok=True)
+    report = {"case": a.case, "run": a.run, "p0": p0, "seeds": seeds, "probes": {}}
+    histories = {}
+    for name in names:
+        table = probes[name]
+        rows = len(table["time"]) if a.upto is None else \
+            int(np.count_nonzero(table["s_over_B"] <= a.upto + 1e-9))
+        rows = max(rows, 2)
+        grains = {k: v[:rows] for k, v in table.items()}
+        path_csv = os.path.join(out, "paths", f"{name}.csv")
+        write_path(path_csv, table, rows)
+        histories[name] = {}
+        for seed in seeds:
+            case_path = os.path.join(out, "cases", f"{name}_s{seed}.json")
+            with open(case_path, "w") as f:
+                json.dump(element_case(rve, seed, os.path.join("..", "paths", f"{name}.csv"),
+                                       f"probe {name} of {a.run} on an RVE of seed {seed}"),
+                          f, indent=1)
+            print(f"replaying probe {name} ({rows} rows, to s/B "
+                  f"{grains['s_over_B'][-1]:.3f}) on the RVE of seed {seed}", flush=True)
+            histories[name][seed] = replay(a.mpm_lig, case_path,
+                                           os.path.join(out, "runs", f"{name}_s{seed}"))
+        report["probes"][name] = compare(grains, histories[name], p0)
+        report["probes"][name]["rows"] = rows
+    print_table(report)
+    with open(os.path.join(out, "replay.json"), "w") as f:
+        json.dump(report, f, indent=1)
+    picture(os.path.join(out, "replay.png"), probes, histories, names, report, p0, a.dpi)
+
+
+def print_table(report):
+    print("| probe | grains: peak q/p (s/B) | RVEs: peak q/p, mean ± std | mean abs. diff. "
+          "of q/p | mean abs. diff. of p / p0 | final p / p0, grains / RVEs |")
+    print("|---|---|---|---|---|---|")
+    for name, r in report["probes"].items():
+        seeds = r["seeds"].values()
+        print(f"| {name} | {r['grains_peak_ratio']:.3f} ({r['grains_peak_at']:.3f}) | "
+              f"{r['rve_peak_ratio_mean']:.3f} ± {r['rve_peak_ratio_std']:.3f} | "
+              f"{np.mean([s['mean_abs_d_ratio'] for s in seeds]):.3f} | "
+              f"{np.mean([s['mean_abs_dp_over_p0'] for s in seeds]):.3f} | "
+              f"{r['grains_final_p_over_p0']:.2f} / "
+              f"{np.mean([s['final_p_over_p0'] for s in seeds]):.2f} |")
+
+
+def picture(path, probes, histories, names, report, p0, dpi):
+    fig, axes = figures.subplots(2, len(names), figsize=(3.6 * len(names), 6.0),
+                                 squeeze=False)
+    for j, name in enumerate(names):
+        rows = report["probes"][name]["rows"]
+        g = {k: v[:rows] for k, v in probes[name].items()}
+        s = g["s_over_B"]
+        axes[0][j].plot(s, ratio(g["p"], g["q"]), "k-", lw=1.6, label="grains")
+        axes[1][j].plot(s, g["p"] / p0, "k-", lw=1.6, label="grains")
+        for seed, h in histories[name].items():
+            n = min(rows, len(h["p"]))
+            axes[0][j].plot(s[:n], ratio(h["p"][:n], h["q"][:n]), lw=0.9, label=f"RVE {seed}")
+            axes[1][j].plot(s[:n], h["p"][:n] / p0, lw=0.9, label=f"RVE {seed}")
+        axes[0][j].set_title(name, fontsize=10)
+        axes[1][j].set_xlabel("s / B")
+    axes[0][0].set_ylabel("q / p")
+    axes[1][0].set_ylabel("p / p0")
+    axes[0][0].legend(fontsize=7)
+    figures.save(fig, path, dpi)
+
+
+def entry():
+    """The command: tools/replay_direct_dem.py in a checkout, mpm-lig-replay-direct-dem
+    installed."""
+    cli.run(main, failures=RuntimeError)
+
+
+if __name__ == "__main__":
+    entry()

@@ -1,0 +1,137 @@
+"""Probes of a direct DEM (--probes): at chosen places, windows of the RVE's size that follow
+their grains, with the window's deformation gradient (least squares of the grains' affine map
+from the start of loading) and its grains' own stress (Love-Weber, love_weber.py) every
+--probes-every s/B, in probes.csv. tools/replay_direct_dem.py drives RVEs along each window's F
+and sets their stress beside the grains'."""
+import math
+import os
+
+import numpy as np
+
+from mpm_lig_post.errors import InputError
+from mpm_lig_post.love_weber import invariants, window_stress
+
+# Named places: the window's centre at (x / B from the footing's axis, depth / B below the
+# surface), clamped so that the window stays inside the block.
+PLACES = {"wedge": (0.25, 0.35),     # under the footing, the rigid wedge
+          "band": (0.65, 0.65),      # below the footing's edge, where the slip band runs
+          "passive": (1.3, 0.3),     # beside the footing, the passive zone that heaves
+          "far": (2.4, 2.0)}         # far away, the soil that hardly moves
+COLUMNS = ("probe", "step", "time", "s_over_B", "F11", "F12", "F21", "F22", "s_xx", "s_yy",
+           "s_xy", "p", "q", "grains", "contacts")
+
+
+def parse(names):
+    """[(name, x/B, depth/B)] from NAME or NAME=X:DEPTH (B units); InputError naming a bad one."""
+    probes = []
+    for text in names:
+        name, _, where = text.partition("=")
+        if where:
+            try:
+                x, depth = (float(v) for v in where.split(":"))
+            except ValueError:
+                raise InputError(f"--probes {text}: give NAME or NAME=X:DEPTH (in footing "
+                                 "widths)") from None
+            if not (math.isfinite(x) and math.isfinite(depth) and x >= 0 and depth >= 0):
+                raise InputError(f"--probes {text}: X and DEPTH must be finite and >= 0")
+        elif name in PLACES:
+            x, depth = PLACES[name]
+        else:
+            raise InputError(f"--probes {text}: no such place (named ones: "
+                             f"{', '.join(PLACES)}; or NAME=X:DEPTH in footing widths)")
+        if not name.isidentifier():
+            raise InputError(f"--probes {text}: a probe's name is letters, digits and _")
+        probes.append((name, x, depth))
+    if len({p[0] for p in probes}) != len(probes):
+        raise InputError("--probes: a name given twice")
+    return probes
+
+
+def check_probes(pb, a):
+    """The probes' names and windows, before anything runs: InputError naming the option."""
+    probes = parse(a.probes)
+    side = window_side(pb, a)
+    if probes and side > min(pb["box"]):
+        raise InputError(f"--probes: the window ({side:.3g} m, {side / pb['d']:.3g} d) is wider "
+                         f"than the block ({min(pb['box']):.3g} m): choose a smaller "
+                         "--probe-window or a larger --scale")
+
+
+def window_side(pb, a):
+    """The probes' window side [m]: --probe-window grain diameters, or the RVE's side."""
+    return a.probe_window * pb["d"] if a.probe_window else rve_side(pb)
+
+
+def rve_side(pb):
+    """The side [m] of a square RVE of the case's own grains at its target void ratio."""
+    rve = pb["rve"]
+    mean_r2 = (pb["rmin"] ** 2 + pb["rmin"] * pb["rmax"] + pb["rmax"] ** 2) / 3.0
+    return math.sqrt(int(rve.get("grains", 400)) * math.pi * mean_r2 * (1.0 + pb["e0"]))
+
+
+def windows(pb, probes, side, lx, ly):
+    """{name: (centre (2,), side)} in block coordinates: x from the axis, y up from the base,
+    the surface at ly; clamped into the block."""
+    half = 0.5 * side
+    out = {}
+    for name, x, depth in probes:
+        cx = min(max(x * pb["B"], half), lx - half)
+        cy = min(max(ly - depth * pb["B"], half), ly - half)
+        out[name] = (np.array([cx, cy]), side)
+    return out
+
+
+def members(ref_xy, centre, side):
+    """The grains whose centres at the start of loading lie in the square window."""
+    return np.all(np.abs(ref_xy - centre) <= 0.5 * side, axis=1)
+
+
+def window_F(ref_xy, cur_xy):
+    """The least-squares affine map of the set's centres: x - c = F (X - C)."""
+    dX = ref_xy - ref_xy.mean(axis=0)
+    dx = cur_xy - cur_xy.mean(axis=0)
+    return (dx.T @ dX) @ np.linalg.inv(dX.T @ dX)
+
+
+class Probes:
+    """Bound to a Run: what the probes are, and their rows at each output."""
+
+    def __init__(self, run, names):
+        self.run = run
+        self.list = parse(names)
+        self.side = window_side(run.pb, run.args)
+
+    def header(self, path):
+        with open(path, "w") as f:
+            f.write(",".join(COLUMNS) + "\n")
+
+    def record(self, s):
+        """One row per probe for the state now (s the settlement)."""
+        run, pb = self.run, self.run.pb
+        ids, xy, r, extra = run.grains_moving()
+        index = {int(i): k for k, i in enumerate(ids)}
+        ref = np.full((len(ids), 2), np.nan)
+        where_ref = np.searchsorted(run.ref_ids, ids)
+        known = (where_ref < len(run.ref_ids)) & \
+            (run.ref_ids[np.minimum(where_ref, len(run.ref_ids) - 1)] == ids)
+        ref[known] = run.ref_xy[where_ref[known]]
+        first, second, force = run.contacts_now()
+        contacts = (np.array([index[int(i)] for i in first], int),
+                    np.array([index[int(i)] for i in second], int), force)
+        rows = []
+        for name, (centre, side) in windows(pb, self.list, self.side, run.lx, run.ly).items():
+            inside = known & members(np.nan_to_num(ref, nan=-1e30), centre, side)
+            F = window_F(ref[inside], xy[inside])
+            area = side * side * float(np.linalg.det(F))
+            sigma = window_stress(inside, xy, r, contacts, area, pb["thickness"],
+                                  extra["mass"], extra["velocity"])
+            p, q = invariants(sigma)
+            touching = int(np.count_nonzero(inside[contacts[0]] | inside[contacts[1]]))
+            rows.append([name, run.steps, run.load_steps * pb["dt"], s / pb["B"], F[0, 0],
+                         F[0, 1], F[1, 0], F[1, 1], sigma[0, 0], sigma[1, 1], sigma[0, 1], p, q,
+                         int(inside.sum()), touching])
+        with open(os.path.join(run.out, "probes.csv"), "a") as f:
+            for row in rows:
+                f.write(",".join(row[0:1] + ["%d" % row[1]] +
+                                 ["%.12g" % v for v in row[2:13]] +
+                                 ["%d" % v for v in row[13:]]) + "\n")
