@@ -53,8 +53,8 @@ import numpy as np
 from mpm_lig_post import cli
 from mpm_lig_post.coarse_grain import FieldOutput
 from mpm_lig_post.direct_dem.case import check_memory, problem
-from mpm_lig_post.direct_dem.checkpoint import (KEPT, OWN_FILES, Stopped, case_digest,
-                                                fill_options, publish_settled, restore_outputs,
+from mpm_lig_post.direct_dem.checkpoint import (ADDED_KEPT, KEPT, OWN_FILES, Stopped,
+                                                case_digest, fill_options, publish_settled, restore_outputs,
                                                 stop_on_signals, verify_checkpoint)
 from mpm_lig_post.direct_dem.probes import check_probes
 from mpm_lig_post.direct_dem.report import chains_picture, summarise
@@ -133,7 +133,7 @@ def main():
         refuse_links_below(out)
         record = verify_checkpoint(out, a, a.case_digest)
         pb = problem(case, a.case, record["options"]["scale"])
-        fill_options(a, pb, record["options"], out)
+        fill_options(a, pb, {**ADDED_KEPT, **record["options"]}, out)
         if a.settlement is None:
             a.settlement = record["settlement"]
     else:

@@ -58,8 +58,6 @@ def stop_on_signals():
 def fill_options(a, pb, kept=None, source=None):
     """The options a run's results depend on: given, from `kept` (a checkpoint's), or the
     defaults. InputError naming an option given otherwise than `source` recorded."""
-    if kept is not None:
-        kept = {**ADDED_KEPT, **kept}
     for key, default in KEPT.items():
         given = getattr(a, key)
         if kept is not None and key in kept:
