@@ -54,8 +54,9 @@ from mpm_lig_post import cli
 from mpm_lig_post.coarse_grain import FieldOutput
 from mpm_lig_post.direct_dem.case import check_memory, problem
 from mpm_lig_post.direct_dem.checkpoint import (ADDED_KEPT, KEPT, OWN_FILES, Stopped,
-                                                case_digest, fill_options, publish_settled, restore_outputs,
-                                                stop_on_signals, verify_checkpoint)
+                                                case_digest, fill_options, publish_settled,
+                                                restore_outputs, stop_on_signals,
+                                                verify_checkpoint)
 from mpm_lig_post.direct_dem.probes import check_probes
 from mpm_lig_post.direct_dem.report import chains_picture, summarise
 from mpm_lig_post.direct_dem.run import Run
