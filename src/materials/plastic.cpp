@@ -1,5 +1,6 @@
 #include "materials/plastic.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "materials/principal.h"
@@ -20,15 +21,29 @@ void PlasticMaterial::accumulate(std::size_t point, const Vec3& plastic_principa
   add_plastic(point, std::sqrt(2.0 / 3.0 * deviatoric.squaredNorm()), volumetric);
 }
 
+double VonMises::yield_stress(double kappa) const {
+  return std::max(yield_stress_ - softening_.modulus * kappa, softening_.residual);
+}
+
 Mat3 VonMises::correct(std::size_t point, const Mat3& trial) {
   const Mat3 deviator = trial - (trial.trace() / 3.0) * Mat3::Identity();
   const double q = std::sqrt(1.5 * deviator.squaredNorm());
-  if (q <= yield_stress_)
+  const double kappa = state(point, 0);
+  const double yield = yield_stress(kappa);
+  if (q <= yield)
     return trial;
-  const double shrink = yield_stress_ / q;
-  // Radial return: Δε_q^p = (q − q_y) / 3G along the deviator, no volume change.
-  add_plastic(point, (q - yield_stress_) / (3.0 * elasticity().shear), 0.0);
-  return trial - (1.0 - shrink) * deviator;
+  // Radial return, Δε_q^p along the deviator, no volume change: q − 3G Δε = q_y(κ + Δε).
+  // On the softening branch Δε = (q − q_y(κ)) / (3G − H) (the reader keeps H < 3G); where
+  // that passes the residual value, the end of the step flows perfectly at q_r.
+  const double three_g = 3.0 * elasticity().shear;
+  double flow = (q - yield) / (three_g - softening_.modulus);
+  double returned = yield_stress(kappa + flow);
+  if (softening_.modulus > 0.0 && returned <= softening_.residual) {
+    returned = softening_.residual;
+    flow = (q - returned) / three_g;
+  }
+  add_plastic(point, flow, 0.0);
+  return trial - (1.0 - returned / q) * deviator;
 }
 
 Mat3 MohrCoulomb::correct(std::size_t point, const Mat3& trial) {

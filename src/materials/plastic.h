@@ -38,19 +38,32 @@ class PlasticMaterial : public ContinuumMaterial {
   std::vector<Eigen::Vector2d> plastic_;  // (ε_q^p, ε_v^p) per point
 };
 
-//! "von_mises": perfectly plastic J2 with radial return; yield at q = q_y.
+//! Linear softening of a yield value with the accumulated deviatoric plastic strain κ:
+//! q_y(κ) = max(q_y0 − H κ, q_r). H = 0 is perfect plasticity.
+struct Softening {
+  double modulus = 0.0;   //!< H [Pa]
+  double residual = 0.0;  //!< q_r [Pa]
+};
+
+//! "von_mises": J2 with radial return; yield at q = q_y, perfectly plastic or, with
+//! `softening_modulus`, softening linearly to `residual_yield_stress` (the test material of
+//! a regularised coupling: docs/methods.md §7).
 class VonMises : public PlasticMaterial {
  public:
-  VonMises(double density, const Elasticity& elasticity, double yield_stress)
-      : PlasticMaterial(density, elasticity), yield_stress_(yield_stress) {}
+  VonMises(double density, const Elasticity& elasticity, double yield_stress,
+           Softening softening = {})
+      : PlasticMaterial(density, elasticity), yield_stress_(yield_stress), softening_(softening) {}
   std::string type() const override { return "von_mises"; }
   double yield_stress() const { return yield_stress_; }
+  //! The yield value after a deviatoric plastic strain `kappa`.
+  double yield_stress(double kappa) const;
 
  protected:
   Mat3 correct(std::size_t point, const Mat3& trial) override;
 
  private:
   double yield_stress_;
+  Softening softening_;
 };
 
 //! "mohr_coulomb" (and "tresca" as its φ = ψ = 0 case): perfectly plastic, non-associated

@@ -20,7 +20,18 @@ std::unique_ptr<Material> read_linear_elastic(const CaseNode& node) {
 std::unique_ptr<Material> read_von_mises(const CaseNode& node) {
   const double density = node.positive("density");
   const Elasticity elasticity = Elasticity::read(node);
-  return std::make_unique<VonMises>(density, elasticity, node.positive("yield_stress"));
+  const double yield_stress = node.positive("yield_stress");
+  Softening softening;
+  if (node.has("softening_modulus")) {
+    // H ≥ 3G would make the return itself snap back (q − 3GΔε falls no faster than q_y).
+    softening.modulus = node.in_range("softening_modulus", 0.0, 3.0 * elasticity.shear);
+    if (!(softening.modulus < 3.0 * elasticity.shear))
+      node.fail("softening_modulus", "must be below 3G (three times the shear modulus)");
+    softening.residual = node.in_range_or("residual_yield_stress", 0.0, yield_stress, 0.0);
+  } else if (node.has("residual_yield_stress")) {
+    node.fail("residual_yield_stress", "needs \"softening_modulus\"");
+  }
+  return std::make_unique<VonMises>(density, elasticity, yield_stress, softening);
 }
 
 //! Tresca is Mohr–Coulomb with φ = ψ = 0 and c = c_u: its principal-space return is then

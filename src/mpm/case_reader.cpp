@@ -100,6 +100,21 @@ Box read_box_in_grid(const CaseNode& node, const std::string& key, const MpmCase
   return box;
 }
 
+void read_internal_length(const CaseNode& l, MpmCase& c) {
+  c.internal_length = l.in_range("length", kMinCellLength, kMaxMeshLength);
+  c.internal_length_method =
+      l.choice_or("method", {"second_gradient", "nonlocal"}, "second_gradient");
+  const bool second_gradient = c.internal_length_method == "second_gradient";
+  const char* other = second_gradient ? "nonlocal_weight" : "softening_modulus";
+  if (l.has(other))
+    l.fail(other, std::string("belongs to method \"") +
+                      (second_gradient ? "nonlocal" : "second_gradient") + "\"");
+  if (second_gradient)
+    c.softening_modulus = l.in_range("softening_modulus", 1e-6, 1e15);
+  else
+    c.nonlocal_weight = l.in_range_or("nonlocal_weight", 0.0, 2.0, 1.0);
+}
+
 void read_analysis(const CaseNode& a, MpmCase& c) {
   c.musl = a.choice_or("scheme", {"musl", "usl"}, "musl") == "musl";
   c.shape_function = a.choice_or("shape_function", shape_registry().names(), "linear");
@@ -109,6 +124,8 @@ void read_analysis(const CaseNode& a, MpmCase& c) {
   if (c.mass_scaling < 1.0)
     a.fail("mass_scaling", "must be >= 1");
   c.volumetric_smoothing = a.get_or<bool>("volumetric_smoothing", false);
+  if (a.has("internal_length"))
+    read_internal_length(a.child("internal_length"), c);
 
   const CaseNode ts = a.child("time_step");
   if (ts.has("fixed") == ts.has("cfl"))

@@ -107,6 +107,13 @@ struct MpmCase {
   double damping = 0.0;
   double mass_scaling = 1.0;
   bool volumetric_smoothing = false;
+  //! `analysis.internal_length` (docs/methods.md §7): ℓ [m] (0: off); its method,
+  //! "second_gradient" (with the softening modulus G_s [Pa]) or "nonlocal" (with the
+  //! non-local weight m).
+  double internal_length = 0.0;
+  std::string internal_length_method = "second_gradient";
+  double softening_modulus = 0.0;
+  double nonlocal_weight = 1.0;
   bool fixed_time_step = false;
   double cfl = 0.5;
   double time_step = 0.0;

@@ -36,15 +36,15 @@ template <int D>
 class KinematicsOperator {
  public:
   virtual ~KinematicsOperator() = default;
-  //! The case key that chose it ("volumetric_smoothing").
+  //! The case key that chose it ("volumetric_smoothing", "internal_length").
   virtual std::string name() const = 0;
   //! Rewrite `increments` (one per point of context.particles, in point order).
   virtual void apply(const KinematicsContext<D>& context, std::vector<Mat3>& increments) const = 0;
 };
 
-//! The operators case `c` asks for, in the order they apply: `analysis.volumetric_smoothing`
-//! (VolumetricSmoothing). None when it asks for none: the increments go to the materials as
-//! computed.
+//! The operators case `c` asks for, in the order they apply: `analysis.internal_length`
+//! (NonlocalDeformation), `analysis.volumetric_smoothing` (VolumetricSmoothing). None when it asks
+//! for none: the increments go to the materials as computed.
 template <int D>
 std::vector<std::unique_ptr<KinematicsOperator<D>>> kinematics_operators(const MpmCase& c);
 

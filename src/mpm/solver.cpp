@@ -82,6 +82,10 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
       shape_(shape_registry().create(c.shape_function)),
       constraints_(c.constraints, grid_),
       kinematics_(kinematics_operators<D>(c)),
+      second_gradient_(
+          c.internal_length > 0.0 && c.internal_length_method == "second_gradient"
+              ? std::make_unique<SecondGradient<D>>(c.internal_length, c.softening_modulus)
+              : nullptr),
       tractions_(c.tractions),
       gravity_(Eigen::Map<const Vec>(c.gravity.data())),
       musl_(c.musl),
@@ -121,7 +125,14 @@ double Solver<D>::stable_time_step(const MpmCase& c) const {
   double speed = 0.0;
   for (std::size_t k = 0; k < materials_.size(); ++k) {
     const materials::Material& m = *materials_[k];
-    speed = std::max(speed, std::sqrt(m.wave_modulus() / (m.density() * mass_scaling_)));
+    // The second-gradient energy stiffens the shortest waves (wave number π/h) by
+    // D (π/h)² = G_s (ℓ/h)².
+    const double gradient = second_gradient_
+                                ? c.softening_modulus * (c.internal_length / grid_.min_cell()) *
+                                      (c.internal_length / grid_.min_cell())
+                                : 0.0;
+    speed =
+        std::max(speed, std::sqrt((m.wave_modulus() + gradient) / (m.density() * mass_scaling_)));
   }
   return c.cfl * grid_.min_cell() / speed;
 }
@@ -146,6 +157,8 @@ void Solver<D>::begin_main_stage() {
 template <int D>
 void Solver<D>::step() {
   compute_shape_functions();
+  if (second_gradient_)
+    compute_gradient_forces();
   compute_external_forces();
   map_particles_to_grid();
   update_grid();
@@ -209,6 +222,11 @@ void Solver<D>::compute_shape_functions() {
 }
 
 template <int D>
+void Solver<D>::compute_gradient_forces() {
+  second_gradient_->force_tensors(particles_, grid_, gradient_forces_);
+}
+
+template <int D>
 void Solver<D>::wrap_periodic(Vec& x) const {
   for (int d = 0; d < D; ++d) {
     if (!grid_.periodic(d))
@@ -242,8 +260,10 @@ void Solver<D>::map_particles_to_grid() {
     const double inertia = mass_scaling_ * m;
     const Vec momentum = inertia * particles_.velocity[p];
     const Vec body_force = m * gravity_ + particles_.external_force[p];
-    const Eigen::Matrix<double, D, D> vs =
+    Eigen::Matrix<double, D, D> vs =
         particles_.volume[p] * particles_.stress[p].template topLeftCorner<D, D>();
+    if (second_gradient_)
+      vs += gradient_forces_[p];
     const PointWeights<D>& w = weights_[p];
     for (int a = 0; a < w.count; ++a) {
       const long i = w.node[a];

@@ -12,6 +12,7 @@
 #include "mpm/grid.h"
 #include "mpm/kinematics.h"
 #include "mpm/particles.h"
+#include "mpm/second_gradient.h"
 #include "mpm/shape_function.h"
 
 namespace mpm_lig::mpm {
@@ -72,6 +73,9 @@ class Solver {
  private:
   double stable_time_step(const MpmCase& c) const;
   void compute_shape_functions();
+  //! The second-gradient energy's share of each point's internal-force tensor
+  //! (analysis.internal_length, method second_gradient): gradient_forces_.
+  void compute_gradient_forces();
   //! Bring a position that left through a periodic face back in through the other.
   void wrap_periodic(Vec& x) const;
   void compute_external_forces();
@@ -95,6 +99,7 @@ class Solver {
   NodeConstraints<D> constraints_;
   std::vector<RigidFooting<D>> footings_;
   std::vector<std::unique_ptr<KinematicsOperator<D>>> kinematics_;
+  std::unique_ptr<SecondGradient<D>> second_gradient_;  // null: no second-gradient energy
   std::vector<Traction> tractions_;
   std::vector<std::vector<std::size_t>> traction_points_;
   Vec gravity_;
@@ -113,6 +118,7 @@ class Solver {
   // Per-step work arrays.
   std::vector<PointWeights<D>> weights_;
   std::vector<Mat3> increments_;
+  std::vector<Eigen::Matrix<double, D, D>> gradient_forces_;
   // Per material: the points (solver indices) and the batch handed to update().
   std::vector<std::vector<std::size_t>> batch_particles_;
   std::vector<std::vector<std::size_t>> batch_points_;

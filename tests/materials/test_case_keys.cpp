@@ -74,6 +74,18 @@ TEST(MaterialCaseKeys, BadValuesNameTheirJsonPath) {
   }
   EXPECT_EQ(error_path(R"({"type": "von_mises", "yield_stress": 0, )" + kElastic + "}"),
             "materials[0].yield_stress");
+  // G = 2e7 / 2.6 for kElastic: H must stay below 3G ≈ 2.3e7.
+  EXPECT_EQ(error_path(R"({"type": "von_mises", "yield_stress": 1e5, "softening_modulus": 3e7, )" +
+                       kElastic + "}"),
+            "materials[0].softening_modulus");
+  EXPECT_EQ(error_path(R"({"type": "von_mises", "yield_stress": 1e5,
+                           "softening_modulus": 1e6, "residual_yield_stress": 2e5, )" +
+                       kElastic + "}"),
+            "materials[0].residual_yield_stress");
+  EXPECT_EQ(error_path(R"({"type": "von_mises", "yield_stress": 1e5,
+                           "residual_yield_stress": 2e4, )" +
+                       kElastic + "}"),
+            "materials[0].residual_yield_stress");
   EXPECT_EQ(error_path(R"({"type": "tresca", )" + kElastic + "}"),
             "materials[0].undrained_strength");
   EXPECT_EQ(error_path(mc + R"("friction_deg": 90, )" + kElastic + "}"),

@@ -62,6 +62,34 @@ TEST(VonMises, SimpleShearStaysOnTheSurfaceAndReachesTheUndrainedStrength) {
   EXPECT_NEAR(s(0, 1), cu, 1e-3 * cu);
 }
 
+TEST(VonMises, SoftensLinearlyWithPlasticStrainToItsResidual) {
+  // q_y(κ) = max(q_y0 − H κ, q_r): in pure shear after first yield the point stays on the
+  // softening line, step by step (the return is exact for linear softening), then on q_r.
+  const double qy = 100e3, residual = 40e3, modulus = 0.1 * 3.0 * kElastic.shear;
+  VonMises m(1800.0, kElastic, qy, Softening{modulus, residual});
+  m.add_points(1);
+  m.set_stress(0, -100e3 * Mat3::Identity());
+  const double step_strain = 0.01 * qy / (std::sqrt(3.0) * kElastic.shear);
+  bool softened = false;
+  for (int i = 0; i < 3000; ++i) {
+    const Mat3 s = step(m, 0, pure_shear(step_strain));
+    const double kappa = m.state(0, 0);
+    if (kappa > 0.0) {
+      ASSERT_NEAR(deviatoric_stress(s), std::max(qy - modulus * kappa, residual), 1e-9 * qy) << i;
+      softened |= deviatoric_stress(s) < 0.9 * qy;
+    }
+    EXPECT_NEAR(mean_pressure(s), 100e3, 1e-6 * qy);
+  }
+  EXPECT_TRUE(softened);
+  EXPECT_GT(m.state(0, 0), (qy - residual) / modulus);  // reached the residual plateau
+  // Without softening the same material is the perfectly plastic one, bit for bit.
+  VonMises perfect(1800.0, kElastic, qy), zero(1800.0, kElastic, qy, Softening{0.0, 0.0});
+  perfect.add_points(1);
+  zero.add_points(1);
+  for (int i = 0; i < 300; ++i)
+    ASSERT_EQ(step(perfect, 0, pure_shear(step_strain)), step(zero, 0, pure_shear(step_strain)));
+}
+
 TEST(Tresca, IsMohrCoulombWithoutFrictionAndLimitsShearToTheUndrainedStrength) {
   const double cu = 40e3;
   MohrCoulombStrength tresca;

@@ -12,27 +12,18 @@ usage: check_replay_direct_dem.py WORK RUN MPM_LIG
 import json
 import os
 import shutil
-import subprocess
 import sys
 
 import numpy as np
 
+from checking import check, finish
+from checking import tool as run_tool
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-TOOL = os.path.join(HERE, "..", "..", "tools", "replay_direct_dem.py")
 TINY = os.path.join(HERE, "direct_dem_tiny.json")
 
-failures = []
-
-
-def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message)
-    if not condition:
-        failures.append(message)
-
-
 def tool(args):
-    p = subprocess.run([sys.executable, TOOL] + args, capture_output=True, text=True)
-    return p.returncode, p.stdout, p.stderr
+    return run_tool("replay_direct_dem.py", args)
 
 
 def hencky_left(F):
@@ -99,5 +90,4 @@ def main():
 
 if __name__ == "__main__":
     main()
-    print(f"{len(failures)} failure(s)")
-    sys.exit(1 if failures else 0)
+    finish()

@@ -39,15 +39,6 @@ from mpm_lig_post.study_spec import Study, write_case  # noqa: E402
 from mpm_lig_post.study_report import COST_AXES, collect, write_report  # noqa: E402
 from mpm_lig_post.tables import read_json  # noqa: E402
 
-def find_mpm_lig(given):
-    candidates = [given] if given else [checkout.path("build", "mpm_lig"),
-                                        shutil.which("mpm_lig")]
-    for c in candidates:
-        if c and os.path.isfile(c) and os.access(c, os.X_OK):
-            return os.path.abspath(c)
-    raise InputError(f"mpm_lig executable not found ({given or 'build/mpm_lig or PATH'}): "
-                     "give --mpm-lig PATH")
-
 
 def validate(study, variants, mpm_lig):
     """Write every variant's case to a scratch folder and let the case reader check it."""
@@ -230,7 +221,7 @@ def main():
     output = cli.writable_folder(a.output or os.path.splitext(os.path.basename(a.study))[0],
                                  "study folder")
     if not a.report_only:
-        mpm_lig = find_mpm_lig(a.mpm_lig)
+        mpm_lig = checkout.find_mpm_lig(a.mpm_lig)
         started = os.path.isdir(os.path.join(output, "variants"))
         if started and not a.resume:
             raise InputError(f"{output}: holds a study already; give --resume to continue it "

@@ -24,13 +24,13 @@ require("numpy", "matplotlib")
 import copy  # noqa: E402
 import json  # noqa: E402
 import os  # noqa: E402
-import subprocess  # noqa: E402
 
 import numpy as np  # noqa: E402
 
 from mpm_lig_post import cli, figures  # noqa: E402
 from mpm_lig_post.direct_dem.case import problem  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
+from mpm_lig_post.mpm_run import run_case  # noqa: E402
 from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -90,12 +90,7 @@ def element_case(rve, seed, path_csv, title):
 
 def replay(mpm_lig, case_path, out):
     """Run one element test; its history (exit 1 naming the log when it fails)."""
-    log = out + ".log"
-    with open(log, "w") as f:
-        code = subprocess.call([mpm_lig, case_path, "--output", out], stdout=f,
-                               stderr=subprocess.STDOUT)
-    if code != 0:
-        raise RuntimeError(f"{case_path}: mpm_lig exited {code} (see {log})")
+    run_case(mpm_lig, case_path, out, out + ".log")
     history = read_history(os.path.join(out, "history.csv"))
     require_columns(history, ("s_xx", "s_yy", "s_xy", "p", "q"), out)
     return history

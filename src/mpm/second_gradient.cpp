@@ -1,0 +1,147 @@
+#include "mpm/second_gradient.h"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include "mpm/point_bins.h"
+
+namespace mpm_lig::mpm {
+namespace {
+
+//! Neighbours within this many (largest) cells give a point's gradient.
+constexpr double kReachInCells = 1.5;
+
+//! One neighbour q of a point p and its least-squares weight vector b: ∇f_p = Σ_q (f_q − f_p) bᵀ.
+template <int D>
+struct Neighbour {
+  std::size_t point;
+  Eigen::Matrix<double, D, 1> weight;
+};
+
+}  // namespace
+
+template <int D>
+SecondGradient<D>::SecondGradient(double length, double softening_modulus)
+    : modulus_(modulus(length, softening_modulus)) {
+  if (!(modulus_ > 0.0) || !std::isfinite(modulus_))
+    throw std::invalid_argument("SecondGradient: length and softening modulus must be > 0");
+}
+
+template <int D>
+double SecondGradient<D>::modulus(double length, double softening_modulus) {
+  const double pi = std::acos(-1.0);
+  return softening_modulus * (length / pi) * (length / pi);
+}
+
+namespace {
+
+//! Each point's neighbours and least-squares weights: with w_q = 1 − (r/R)², M = Σ w dx dxᵀ,
+//! b_q = w_q M⁻¹ dx_q, the fit's gradient is Σ_q (f_q − f_p) b_qᵀ (exact for a linear f). A
+//! point whose neighbours do not span the plane (M singular) gets none: no gradient.
+template <int D>
+std::vector<std::vector<Neighbour<D>>> neighbours_of(const Particles<D>& particles,
+                                                     const Grid<D>& grid) {
+  using Vec = Eigen::Matrix<double, D, 1>;
+  const std::size_t n = particles.size();
+  const double reach = kReachInCells * grid.cell().maxCoeff();
+  PointBins<D> bins(grid, reach);
+  for (std::size_t p = 0; p < n; ++p)
+    bins.add(p, particles.position[p]);
+  std::vector<std::vector<Neighbour<D>>> neighbours(n);
+  std::vector<Vec> offsets;
+  std::vector<double> weights;
+  for (std::size_t p = 0; p < n; ++p) {
+    std::vector<Neighbour<D>>& list = neighbours[p];
+    offsets.clear();
+    weights.clear();
+    Eigen::Matrix<double, D, D> moment = Eigen::Matrix<double, D, D>::Zero();
+    for (const std::size_t box : bins.around(particles.position[p])) {
+      for (const std::size_t q : bins.members(box)) {
+        if (q == p)
+          continue;
+        const Vec dx = separation(grid, particles.position[p], particles.position[q]);
+        const double r2 = dx.squaredNorm() / (reach * reach);
+        if (r2 >= 1.0)
+          continue;
+        list.push_back({q, Vec::Zero()});
+        offsets.push_back(dx);
+        weights.push_back(1.0 - r2);
+        moment += (1.0 - r2) * dx * dx.transpose();
+      }
+    }
+    const Eigen::FullPivLU<Eigen::Matrix<double, D, D>> lu(moment);
+    if (list.size() < static_cast<std::size_t>(D) || !lu.isInvertible() || lu.rcond() < 1e-8) {
+      list.clear();
+      continue;
+    }
+    const Eigen::Matrix<double, D, D> inverse = lu.inverse();
+    for (std::size_t k = 0; k < list.size(); ++k)
+      list[k].weight = weights[k] * (inverse * offsets[k]);
+  }
+  return neighbours;
+}
+
+//! ∇F_p as D matrices, [c] = ∂F/∂x_c.
+template <int D>
+std::array<Eigen::Matrix<double, D, D>, D> gradient_at(const Particles<D>& particles, std::size_t p,
+                                                       const std::vector<Neighbour<D>>& list) {
+  using Matrix = Eigen::Matrix<double, D, D>;
+  const Matrix fp = particles.deformation[p].template topLeftCorner<D, D>();
+  std::array<Matrix, D> gradient;
+  for (int c = 0; c < D; ++c)
+    gradient[c].setZero();
+  for (const Neighbour<D>& nb : list) {
+    const Matrix df = particles.deformation[nb.point].template topLeftCorner<D, D>() - fp;
+    for (int c = 0; c < D; ++c)
+      gradient[c] += df * nb.weight[c];
+  }
+  return gradient;
+}
+
+}  // namespace
+
+template <int D>
+void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<D>& grid,
+                                      std::vector<Matrix>& out) const {
+  const std::size_t n = particles.size();
+  const auto neighbours = neighbours_of(particles, grid);
+  // Π_q = ∂E/∂F_q: ∂(∇F_p[c])/∂F_q = b_pq[c] for q a neighbour, −Σ_q b_pq[c] for q = p.
+  std::vector<Matrix> pi(n, Matrix::Zero());
+  for (std::size_t p = 0; p < n; ++p) {
+    if (neighbours[p].empty())
+      continue;
+    const std::array<Matrix, D> gradient = gradient_at(particles, p, neighbours[p]);
+    const double scale = modulus_ * particles.volume[p];
+    for (const Neighbour<D>& nb : neighbours[p]) {
+      Matrix share = Matrix::Zero();
+      for (int c = 0; c < D; ++c)
+        share += gradient[c] * nb.weight[c];
+      pi[nb.point] += scale * share;
+      pi[p] -= scale * share;
+    }
+  }
+  // S_p = Π_p F_pᵀ: Ḟ_p = L_p F_p, so Π_p : Ḟ_p = S_p : L_p.
+  out.resize(n);
+  for (std::size_t p = 0; p < n; ++p)
+    out[p] = pi[p] * particles.deformation[p].template topLeftCorner<D, D>().transpose();
+}
+
+template <int D>
+double SecondGradient<D>::energy(const Particles<D>& particles, const Grid<D>& grid) const {
+  const auto neighbours = neighbours_of(particles, grid);
+  double sum = 0.0;
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const std::array<Matrix, D> gradient = gradient_at(particles, p, neighbours[p]);
+    double squared = 0.0;
+    for (int c = 0; c < D; ++c)
+      squared += gradient[c].squaredNorm();
+    sum += 0.5 * modulus_ * particles.volume[p] * squared;
+  }
+  return sum;
+}
+
+template class SecondGradient<2>;
+template class SecondGradient<3>;
+
+}  // namespace mpm_lig::mpm

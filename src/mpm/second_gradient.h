@@ -1,0 +1,51 @@
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "mpm/grid.h"
+#include "mpm/particles.h"
+
+namespace mpm_lig::mpm {
+
+//! A second-gradient energy on the deformation field, the regularisation of
+//! `analysis.internal_length` (docs/methods.md §7): E = ½ D Σ_p V_p |∇F_p|², with ∇F_p the
+//! weighted least-squares gradient of the points' deformation gradients over the points
+//! within 1.5 cells of p. (A gradient through the nodes, F projected to the nodes and
+//! differentiated with the shape functions, cannot see a strain alternating cell by cell: the
+//! projection averages it away, and a softening layer fills with that pattern.)
+//! The materials are not touched: a DEM point's RVE sees the same F as without it; the energy
+//! adds to each point's internal-force tensor V σ a tensor S with the same form,
+//! f_i = −Σ_p (V_p σ_p + S_p) ∇N_i(x_p), where S_p : L_p is the point's share of dE/dt
+//! (Ḟ_p = L_p F_p).
+//!
+//! In a band where the material softens with tangent shear modulus −G_s, equilibrium
+//! σ − D γ'' = const makes the band's strain increment a cosine of full width at half height
+//! ℓ = π √(D / G_s): the case gives ℓ and G_s, D = G_s (ℓ/π)².
+//!
+//! What it keeps: the forces sum to zero (Σ_i ∇N_i = 0: momentum); E depends on F only
+//! through |∇F̃|, unchanged by a rigid rotation F → Q F, so a rotation adds no force and the
+//! torque of the forces vanishes; no state of its own (F is the points' state), so a resume
+//! and any rank count give the same forces. A uniform F has ∇F = 0 exactly (differences).
+template <int D>
+class SecondGradient {
+ public:
+  using Matrix = Eigen::Matrix<double, D, D>;
+
+  //! D [Pa m²] from the length ℓ [m] and the softening modulus G_s [Pa].
+  SecondGradient(double length, double softening_modulus);
+  static double modulus(double length, double softening_modulus);
+  double modulus() const { return modulus_; }
+
+  //! S_p for every point from the points' positions, volumes and F.
+  void force_tensors(const Particles<D>& particles, const Grid<D>& grid,
+                     std::vector<Matrix>& out) const;
+  //! E = ½ D Σ_p V_p |∇F_p|² [J per unit thickness in 2D]: what force_tensors differentiates.
+  double energy(const Particles<D>& particles, const Grid<D>& grid) const;
+
+ private:
+  double modulus_;
+};
+
+}  // namespace mpm_lig::mpm

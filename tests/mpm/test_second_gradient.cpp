@@ -1,0 +1,116 @@
+// The second-gradient energy of an internal length: its force tensors are the derivative of
+// its energy (a finite-difference check along random velocity gradients), it is zero for a
+// uniform F, and a rigid rotation of the whole body leaves the energy as it was and turns the
+// force tensors with it (objectivity).
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "mpm/second_gradient.h"
+#include "support.h"
+
+namespace mpm_lig::mpm {
+namespace {
+
+using testing::plane_rotation;
+
+using Vec2 = Eigen::Vector2d;
+using Matrix = Eigen::Matrix2d;
+
+//! Points on a 6 x 5 lattice (spacing 0.05) of a grid of 0.1 cells, F varying smoothly
+//! across them plus a little noise, so every point has a different gradient.
+Particles<2> lattice(std::mt19937& random) {
+  std::uniform_real_distribution<double> noise(-0.01, 0.01);
+  Particles<2> particles;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const Vec2 x(0.025 + 0.05 * i, 0.025 + 0.05 * j);
+      particles.position.push_back(x);
+      particles.volume.push_back(0.0025 * (1.0 + noise(random)));
+      Mat3 f = Mat3::Identity();
+      f(0, 0) += 0.1 * x[1] * x[1] + noise(random);
+      f(0, 1) += 0.3 * x[1] + noise(random);
+      f(1, 0) += noise(random);
+      f(1, 1) -= 0.05 * x[0] + noise(random);
+      particles.deformation.push_back(f);
+    }
+  }
+  return particles;
+}
+
+const Grid<2> kGrid(Vec2(0.0, 0.0), Vec2(0.3, 0.3), {3, 3});
+
+TEST(SecondGradient, ModulusGivesTheBandWidthAsFullWidthAtHalfHeight) {
+  // ℓ = π √(D / G_s).
+  const double d = SecondGradient<2>::modulus(0.1, 4e5);
+  EXPECT_NEAR(std::acos(-1.0) * std::sqrt(d / 4e5), 0.1, 1e-15);
+}
+
+TEST(SecondGradient, ForceTensorsAreTheEnergysDerivative) {
+  std::mt19937 random(7);
+  const Particles<2> particles = lattice(random);
+  const SecondGradient<2> energy(0.1, 1e6);
+  std::vector<Matrix> s;
+  energy.force_tensors(particles, kGrid, s);
+  ASSERT_EQ(s.size(), particles.size());
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 3; ++trial) {
+    // Along F_p ← (I + ε L_p) F_p the energy changes by ε Σ_p S_p : L_p to first order.
+    std::vector<Matrix> l(particles.size());
+    double predicted = 0.0;
+    for (std::size_t p = 0; p < particles.size(); ++p) {
+      l[p] << normal(random), normal(random), normal(random), normal(random);
+      predicted += (s[p].array() * l[p].array()).sum();
+    }
+    auto moved = [&](double eps) {
+      Particles<2> m = particles;
+      for (std::size_t p = 0; p < m.size(); ++p) {
+        Mat3 step = Mat3::Identity();
+        step.topLeftCorner<2, 2>() += eps * l[p];
+        m.deformation[p] = step * m.deformation[p];
+      }
+      return energy.energy(m, kGrid);
+    };
+    const double eps = 1e-6;
+    const double measured = (moved(eps) - moved(-eps)) / (2.0 * eps);
+    EXPECT_NEAR(measured, predicted, 1e-6 * std::abs(predicted)) << trial;
+    EXPECT_GT(std::abs(predicted), 0.0);
+  }
+}
+
+TEST(SecondGradient, UniformDeformationHasNoEnergyAndNoForce) {
+  std::mt19937 random(3);
+  Particles<2> particles = lattice(random);
+  for (Mat3& f : particles.deformation)
+    f = plane_rotation(0.4) * (Mat3() << 1.1, 0.2, 0.0, -0.05, 0.93, 0.0, 0.0, 0.0, 1.0).finished();
+  const SecondGradient<2> energy(0.1, 1e6);
+  EXPECT_EQ(energy.energy(particles, kGrid), 0.0);
+  std::vector<Matrix> s;
+  energy.force_tensors(particles, kGrid, s);
+  for (const Matrix& sp : s)
+    EXPECT_EQ(sp.norm(), 0.0);
+}
+
+TEST(SecondGradient, RigidRotationKeepsTheEnergyAndTurnsTheForces) {
+  std::mt19937 random(11);
+  const Particles<2> particles = lattice(random);
+  Particles<2> turned = particles;
+  const Mat3 q = plane_rotation(1.1);
+  for (Mat3& f : turned.deformation)
+    f = q * f;  // F → Q F: the same body turned (the positions' turn changes no neighbour)
+  const SecondGradient<2> energy(0.1, 1e6);
+  const double e = energy.energy(particles, kGrid);
+  EXPECT_GT(e, 0.0);
+  EXPECT_NEAR(energy.energy(turned, kGrid), e, 1e-12 * e);
+  std::vector<Matrix> s, s_turned;
+  energy.force_tensors(particles, kGrid, s);
+  energy.force_tensors(turned, kGrid, s_turned);
+  const Matrix q2 = q.topLeftCorner<2, 2>();
+  for (std::size_t p = 0; p < s.size(); ++p)
+    EXPECT_NEAR((s_turned[p] - q2 * s[p] * q2.transpose()).norm(), 0.0, 1e-9 * s[p].norm() + 1e-20)
+        << p;
+}
+
+}  // namespace
+}  // namespace mpm_lig::mpm
