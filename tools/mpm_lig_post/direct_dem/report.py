@@ -6,8 +6,18 @@ import time
 import numpy as np
 
 from mpm_lig_post import figures
+from mpm_lig_post.direct_dem.probes import parse, window_side, windows
 from mpm_lig_post.run_folder import write_json_atomic
 from mpm_lig_post.tables import read_history
+
+
+def probe_windows(run, pb, args):
+    """{probe: its window's centre and side in footing widths} (tools/mpm_probes.py reads it)."""
+    names = getattr(args, "probes", None) or []
+    placed = windows(pb, parse(names), window_side(pb, args), run.lx, run.ly)
+    return {name: {"x_over_B": float(c[0] / pb["B"]), "depth_over_B": float((run.ly - c[1]) / pb["B"]),
+                   "side_over_B": float(side / pb["B"])} for name, (c, side) in placed.items()}
+
 
 def summarise(run, pb, args, out, finished):
     table = read_history(os.path.join(out, "history.csv"))
@@ -32,7 +42,7 @@ def summarise(run, pb, args, out, finished):
         "s_over_B_reached": float(sB[-1]), "peak_q_over_qs": float(np.max(q)),
         "peak_at_s_over_B": float(sB[int(np.argmax(q))]),
         "plateau_0.1_0.3": window(0.1, 0.3), "plateau_0.1_0.4": window(0.1, 0.4),
-        "mean_0.4_1.0": window(0.4, 1.0)}
+        "mean_0.4_1.0": window(0.4, 1.0), "probes": probe_windows(run, pb, args)}
     write_json_atomic(os.path.join(out, "summary.json"), summary)
     fig, ax = figures.subplots(figsize=(6, 4))
     ax.plot(sB, q, "-", lw=1)
