@@ -6,6 +6,9 @@ usage: check_direct_dem.py bad WORK      bad input: exit 2, the key named, nothi
        check_direct_dem.py run WORK      a real run of tests/tools/direct_dem_tiny.json (100
                                          discs, to s/B = 0.12, two probes) and what it must
                                          reproduce
+       check_direct_dem.py start_from_scale WORK
+                                         --start-from a block of --scale 2 without --scale: the
+                                         block's B and speed
        check_direct_dem.py resume WORK REFERENCE
                                          the same run stopped in its preparation (at a
                                          checkpoint) and in its loading (SIGTERM), resumed: the
@@ -367,6 +370,19 @@ def resume(work, reference):
           mine["preparation"] == theirs["preparation"],
           "the same preparation and particle-steps as the uninterrupted run")
     refused(work)
+    # A finished run is not continued to a larger settlement: its last checkpoint is its end
+    # state, and a loading continued from there is not the longer run (it jumped).
+    finished = os.path.join(work, "finished")
+    shutil.copytree(out, finished)
+    before = {n: os.path.getmtime(os.path.join(finished, n)) for n in os.listdir(finished)
+              if n != "direct_dem.lock"}
+    code, _, stderr = run_tool([TINY, "--output", finished, "--resume", "--settlement",
+                                str(2 * SETTLEMENT)])
+    check(code == 2 and "finished" in stderr and "--start-from" in stderr,
+          f"a finished run resumed to a larger settlement: exit {code}: {stderr.strip()[:160]}")
+    after = {n: os.path.getmtime(os.path.join(finished, n)) for n in os.listdir(finished)
+             if n != "direct_dem.lock"}
+    check(after == before, "a finished run resumed: the folder unchanged")
 
 
 def refused(work):
@@ -443,6 +459,34 @@ def refused(work):
     check(first.returncode == 4 and "SIGHUP" in err, f"SIGHUP: exit {first.returncode}")
 
 
+def start_from_scale(work):
+    """--start-from of a block prepared at --scale 2, without --scale: the new loading is the
+    block's (its B, B/d and speed), not scale 1's; the loading starts where the block's did."""
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    block, again = os.path.join(work, "scale2"), os.path.join(work, "again")
+    code, _, stderr = run_tool([TINY, "--output", block, "--scale", "2", "--tiles", "2",
+                                "--settlement", "0.004", "--snapshots"])
+    check(code == 0, f"the tiny block at scale 2 (tiled): exit {code} {stderr.strip()[-200:]}")
+    if code != 0:
+        return
+    code, _, stderr = run_tool([TINY, "--output", again, "--start-from", block,
+                                "--speed-factor", "0.5", "--settlement", "0.004", "--snapshots"])
+    check(code == 0, f"--start-from it at half speed, no --scale: exit {code} "
+          f"{stderr.strip()[-200:]}")
+    if code != 0:
+        return
+    first, second = (json.load(open(os.path.join(d, "summary.json"))) for d in (block, again))
+    check(second["B"] == first["B"] and second["B_over_d"] == first["B_over_d"] and
+          second["scale"] == 2.0, f"the block's B {second['B']} (B/d {second['B_over_d']:g}), "
+          f"not scale 1's")
+    check(abs(second["footing_speed"] - 0.5 * first["footing_speed"]) < 1e-12,
+          f"half the block's speed ({second['footing_speed']:.4g} against "
+          f"{first['footing_speed']:.4g} m/s)")
+    rows = [open(os.path.join(d, "history.csv")).read().splitlines()[1] for d in (block, again)]
+    check(rows[0] == rows[1], "the loading starts from the block's own state (first rows equal)")
+
+
 def main():
     mode = sys.argv[1]
     if mode == "bad":
@@ -453,6 +497,8 @@ def main():
         real(sys.argv[2])
     elif mode == "resume":
         resume(sys.argv[2], sys.argv[3])
+    elif mode == "start_from_scale":
+        start_from_scale(sys.argv[2])
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)

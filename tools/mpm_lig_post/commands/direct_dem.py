@@ -52,6 +52,7 @@ import numpy as np
 
 from mpm_lig_post import cli
 from mpm_lig_post.coarse_grain import FieldOutput
+from mpm_lig_post.direct_dem.block import loading_steps
 from mpm_lig_post.direct_dem.case import check_memory, problem
 from mpm_lig_post.direct_dem.checkpoint import (ADDED_KEPT, KEPT, OWN_FILES, Stopped,
                                                 case_digest, fill_options, publish_settled,
@@ -79,7 +80,8 @@ def arguments():
                    "block and repeat it T x T times (default 1: the whole block)")
     p.add_argument("--seed", type=cli.non_negative_int, help="packing seed (default 11)")
     p.add_argument("--settlement", type=cli.positive,
-                   help="final s/B (default 1; on --resume the checkpoint's)")
+                   help="final s/B (default 1; on --resume the checkpoint's, or a larger one "
+                   "while the run has not finished)")
     p.add_argument("--speed-factor", type=cli.positive,
                    help="footing speed over the one of the rve's inertial number (default 1)")
     p.add_argument("--np", type=cli.positive_int, help="MPI ranks (default 1: serial)")
@@ -137,16 +139,26 @@ def main():
         fill_options(a, pb, {**ADDED_KEPT, **record["options"]}, out)
         if a.settlement is None:
             a.settlement = record["settlement"]
+        if record["stage"] == "load" and record["state"]["load_steps"] >= loading_steps(
+                pb, a.speed_factor, record["settlement"]):
+            # Its last checkpoint is the end state, after a shorter last chunk: a loading
+            # continued from it is not the longer run (measured: the footing's load jumped).
+            raise InputError(f"{out}: this run finished (s/B {record['settlement']:g}); for a "
+                             "longer loading start a new run from its settled block with "
+                             "--start-from")
     else:
-        pb = problem(case, a.case, a.scale or KEPT["scale"])
         if a.start_from:
             start = os.path.abspath(a.start_from)
             refuse_links(start, ["settled.json", "settled.restart", "reference.npz"])
             record = verify_checkpoint(start, a, a.case_digest, "settled.json")
             options = {k: v for k, v in record["options"].items()
                        if k in ("scale", "tiles", "seed", "void_ratio_tolerance")}
+            # The problem at the settled block's scale: its footing width, speed and the
+            # probes' places are those of that block, whatever --scale says (or omits).
+            pb = problem(case, a.case, options["scale"])
             fill_options(a, pb, options, start)
         else:
+            pb = problem(case, a.case, a.scale or KEPT["scale"])
             fill_options(a, pb)
         a.settlement = a.settlement or 1.0
         if os.path.isdir(out):

@@ -16,6 +16,11 @@ HISTORY = ("step", "time", "settlement", "s_over_B", "footing_force", "q", "q_ov
            "base_force", "surcharge_force", "wall_force", "kinetic_energy", "top_grains")
 
 
+
+def loading_steps(pb, speed_factor, settlement):
+    """DEM steps of the loading to s/B = `settlement`."""
+    return int(math.ceil(settlement * pb["B"] / (pb["speed"] * speed_factor * pb["dt"])))
+
 class Block:
     """The block and loading stages of Run (run.py), which owns the engine session and state."""
 
@@ -204,7 +209,7 @@ class Block:
         True when it got there."""
         pb, a = self.pb, self.args
         ds = pb["speed"] * a.speed_factor * pb["dt"]
-        total = int(math.ceil(a.settlement * pb["B"] / ds))
+        total = loading_steps(pb, a.speed_factor, a.settlement)
         hist = os.path.join(self.out, "history.csv")
         if self.stage != "load":
             self.stage = "load"
