@@ -371,7 +371,7 @@ def resume(work, reference):
           "the same preparation and particle-steps as the uninterrupted run")
     refused(work)
     # A finished run is not continued to a larger settlement: its last checkpoint is its end
-    # state, and a loading continued from there is not the longer run (it jumped).
+    # state, off the loading's step grid, so a continued loading is not the longer run.
     finished = os.path.join(work, "finished")
     shutil.copytree(out, finished)
     before = {n: os.path.getmtime(os.path.join(finished, n)) for n in os.listdir(finished)

@@ -141,8 +141,8 @@ def main():
             a.settlement = record["settlement"]
         if record["stage"] == "load" and record["state"]["load_steps"] >= loading_steps(
                 pb, a.speed_factor, record["settlement"]):
-            # Its last checkpoint is the end state, after a shorter last chunk: a loading
-            # continued from it is not the longer run (measured: the footing's load jumped).
+            # Its last checkpoint is the end state, a shorter chunk off the loading's 500-step
+            # grid: a loading continued from there is not bit for bit the longer run.
             raise InputError(f"{out}: this run finished (s/B {record['settlement']:g}); for a "
                              "longer loading start a new run from its settled block with "
                              "--start-from")
