@@ -139,8 +139,9 @@ def main():
         fill_options(a, pb, {**ADDED_KEPT, **record["options"]}, out)
         if a.settlement is None:
             a.settlement = record["settlement"]
-        if record["stage"] == "load" and record["state"]["load_steps"] >= loading_steps(
-                pb, a.speed_factor, record["settlement"]):
+        if a.settlement > record["settlement"] and record["stage"] == "load" and \
+                record["state"]["load_steps"] >= loading_steps(pb, a.speed_factor,
+                                                               record["settlement"]):
             # Its last checkpoint is the end state, a shorter chunk off the loading's 500-step
             # grid: a loading continued from there is not bit for bit the longer run.
             raise InputError(f"{out}: this run finished (s/B {record['settlement']:g}); for a "
