@@ -19,15 +19,10 @@ import sys
 
 import numpy as np
 
+from checking import check, finish
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOL = os.path.join(HERE, "..", "..", "tools", "shear_band.py")
-failures = []
-
-
-def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message)
-    if not condition:
-        failures.append(message)
 
 
 def fake_run(folder, displacement):
@@ -90,10 +85,8 @@ def main():
                        capture_output=True, text=True)
     check(p.returncode == 2 and "no snapshot near" in p.stderr, f"no snapshot there: exit "
           f"{p.returncode} {p.stderr.strip()[:120]}")
-    if failures:
-        print(f"{len(failures)} check(s) failed")
-        sys.exit(1)
 
 
 if __name__ == "__main__":
     main()
+    finish()
