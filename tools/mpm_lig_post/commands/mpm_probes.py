@@ -9,8 +9,8 @@ CASE.json is the MPM run's case (its footing gives B, its base the surface). The
 probes.csv gives each window's rows (F and the grains' Love-Weber stress by s/B), its
 summary.json p0 = q_s and "probes", each window's centre and side in footing widths (for a
 run from before they were recorded: the named places of direct_dem and --window). In the MPM
-run the window has the same place and size in footing widths; at every output step its points (those whose reference position,
-position minus displacement, lies in the window) give the volume-weighted mean stress and
+run the window has the same place and size in footing widths; at every output step its
+points (those whose reference position, position minus displacement, lies in the window) give the volume-weighted mean stress and
 logarithmic strain, and s/B is the footing's settlement at that step over B. Both are set
 side by side at the grains' rows (the MPM's interpolated in s/B): p / p0, the stress ratio
 q/p (q the radius of Mohr's circle in the plane, as the element tests write it) and the
@@ -30,8 +30,7 @@ import os  # noqa: E402
 import numpy as np  # noqa: E402
 
 from mpm_lig_post import cli, figures  # noqa: E402
-from mpm_lig_post.commands.replay_direct_dem import read_probes  # noqa: E402
-from mpm_lig_post.direct_dem.probes import PLACES  # noqa: E402
+from mpm_lig_post.direct_dem.probes import PLACES, read_probes  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
 from mpm_lig_post.fields import FieldFile  # noqa: E402
 from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402

@@ -29,47 +29,13 @@ import numpy as np  # noqa: E402
 
 from mpm_lig_post import cli, figures  # noqa: E402
 from mpm_lig_post.direct_dem.case import problem  # noqa: E402
+from mpm_lig_post.direct_dem.probes import read_probes  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
 from mpm_lig_post.mpm_run import run_case  # noqa: E402
 from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_MPM_LIG = os.path.normpath(os.path.join(HERE, "..", "..", "..", "build", "mpm_lig"))
-PROBE_COLUMNS = ("s_over_B", "time", "F11", "F12", "F21", "F22", "s_xx", "s_yy", "s_xy", "p",
-                 "q")
-
-
-def read_probes(run):
-    """{probe: {column: array}} from RUN/probes.csv, rows in order."""
-    path = os.path.join(run, "probes.csv")
-    if not os.path.isfile(path):
-        raise InputError(f"{path}: no probes (run tools/direct_dem.py with --probes)")
-    with open(path) as f:
-        header = f.readline().strip().split(",")
-        rows = [line.strip().split(",") for line in f if line.strip()]
-    missing = [c for c in ("probe",) + PROBE_COLUMNS if c not in header]
-    if missing:
-        raise InputError(f"{path}: no column {missing[0]}")
-    probes = {}
-    for k, row in enumerate(rows):
-        if len(row) != len(header):
-            raise InputError(f"{path}: row {k + 1} has {len(row)} values, the header "
-                             f"{len(header)}")
-        probes.setdefault(row[0], []).append(row)
-    out = {}
-    for name, got in probes.items():
-        try:
-            table = {c: np.array([float(r[header.index(c)]) for r in got]) for c in PROBE_COLUMNS}
-        except ValueError as e:
-            raise InputError(f"{path}: probe {name}: {e}") from None
-        if len(got) < 2:
-            raise InputError(f"{path}: probe {name} has {len(got)} row; a path needs two")
-        out[name] = table
-    if not out:
-        raise InputError(f"{path}: no probe rows")
-    return out
-
-
 def write_path(path, table, rows):
     with open(path, "w") as f:
         f.write("# the deformation gradient of a direct-DEM probe window (replay_direct_dem.py)\n")

@@ -21,6 +21,42 @@ COLUMNS = ("probe", "step", "time", "s_over_B", "F11", "F12", "F21", "F22", "s_x
            "s_xy", "p", "q", "grains", "contacts")
 
 
+# The numeric columns a reader of probes.csv takes (replay_direct_dem, mpm_probes).
+READ_COLUMNS = ("s_over_B", "time", "F11", "F12", "F21", "F22", "s_xx", "s_yy", "s_xy", "p",
+                 "q")
+
+
+def read_probes(run):
+    """{probe: {column: array}} from RUN/probes.csv, rows in order."""
+    path = os.path.join(run, "probes.csv")
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: no probes (run tools/direct_dem.py with --probes)")
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+        rows = [line.strip().split(",") for line in f if line.strip()]
+    missing = [c for c in ("probe",) + READ_COLUMNS if c not in header]
+    if missing:
+        raise InputError(f"{path}: no column {missing[0]}")
+    probes = {}
+    for k, row in enumerate(rows):
+        if len(row) != len(header):
+            raise InputError(f"{path}: row {k + 1} has {len(row)} values, the header "
+                             f"{len(header)}")
+        probes.setdefault(row[0], []).append(row)
+    out = {}
+    for name, got in probes.items():
+        try:
+            table = {c: np.array([float(r[header.index(c)]) for r in got]) for c in READ_COLUMNS}
+        except ValueError as e:
+            raise InputError(f"{path}: probe {name}: {e}") from None
+        if len(got) < 2:
+            raise InputError(f"{path}: probe {name} has {len(got)} row; a path needs two")
+        out[name] = table
+    if not out:
+        raise InputError(f"{path}: no probe rows")
+    return out
+
+
 def parse(names):
     """[(name, x/B, depth/B)] from NAME or NAME=X:DEPTH (B units); InputError naming a bad one."""
     probes = []
