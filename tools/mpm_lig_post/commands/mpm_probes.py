@@ -11,8 +11,8 @@ summary.json p0 = q_s and "probes", each window's centre and side in footing wid
 run from before they were recorded: the named places of direct_dem and --window). In the MPM
 run the window has the same place and size in footing widths; at every output step its
 points (those whose reference position, position minus displacement, lies in the window)
-give the volume-weighted mean stress and logarithmic strain, and s/B is the footing's settlement at that step over B. Both are set
-side by side at the grains' rows (the MPM's interpolated in s/B): p / p0, the stress ratio
+give the volume-weighted mean stress and logarithmic strain, and s/B is the footing's
+settlement at that step over B. Both are set side by side at the grains' rows (the MPM's interpolated in s/B): p / p0, the stress ratio
 q/p (q the radius of Mohr's circle in the plane, as the element tests write it) and the
 volumetric and deviatoric strain (Hencky: the grains' from their window's F). The two
 "part" at the first s/B where |q/p| differs by more than --ratio-gap (default 0.1) or p by
