@@ -26,11 +26,13 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
   const std::vector<double> index = rves_->write_bundle(out);
   const RveLayout& layout = rves_->layout();
   const QuietPoints& quiet = selection_.quiet();
+  const SteadyFlow& flow = selection_.flow();
   std::vector<double> owned;
   for (const std::size_t p : layout.owned()) {
     PointCheckpoint saved{results_.stress[p], results_.substeps[p], rves_->state(p)};
     std::copy(work_.row(p), work_.row(p) + DemWork::kValues, saved.work);
     quiet.save_row(p, saved.quiet);
+    flow.save_row(p, saved.flow);
     pack(saved, owned);
   }
   write_points(out, layout.gather(owned, static_cast<int>(point_checkpoint_width())));
@@ -40,6 +42,8 @@ void DemRveMaterial::write_checkpoint(materials::CheckpointWriter& out, std::siz
   out.set("particle_steps", cost_.particle_steps);
   for (const QuietStatField& f : kQuietStatFields)
     out.set(f.name, quiet.stats().*f.value);
+  for (const SteadyFlowStatField& f : kSteadyFlowStatFields)
+    out.set(f.name, flow.stats().*f.value);
   schedule_.write_checkpoint(out, layout);
   schedule_.flush_record();
 }
@@ -64,6 +68,7 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
   results_.start(points_);
   start_ledgers();
   QuietPoints& quiet = selection_.quiet();
+  SteadyFlow& flow = selection_.flow();
   for (std::size_t p = 0; p < points_; ++p) {
     const PointCheckpoint saved = unpack(rows.data() + p * point_checkpoint_width());
     results_.stress[p] = saved.stress;
@@ -71,6 +76,7 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     results_.dem_pressure[p] = saved.rve.last_mean_stress;
     work_.restore_row(p, saved.work);
     quiet.restore_row(p, saved.quiet);
+    flow.restore_row(p, saved.flow);
     if (rves_->layout().owns(p))
       rves_->restore(p, in, index.empty() ? nullptr : index.data() + p * kPointIndexWidth,
                      saved.rve);
@@ -82,6 +88,10 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
   for (const QuietStatField& f : kQuietStatFields)
     stats.*f.value = in.get(f.name);
   quiet.restore_stats(stats);
+  SteadyFlowStats flow_stats;
+  for (const SteadyFlowStatField& f : kSteadyFlowStatFields)
+    flow_stats.*f.value = in.get(f.name);
+  flow.restore_stats(flow_stats);
   cost_.simulations = points_;
   cost_.particle_steps = in.get("particle_steps");
   schedule_.start_record(rank_, work_dir_, points_, true, updates_);

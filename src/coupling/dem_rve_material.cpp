@@ -46,7 +46,8 @@ DemRveMaterial::DemRveMaterial(const CaseNode& node)
       packing_count_(read_packing_count(node, spec_)),
       ranks_per_rve_(read_ranks_per_rve(node)),
       selection_(read_optional(node, "quiet", &parse_quiet),
-                 read_optional(node, "start_as_continuum", &parse_continuum_start)),
+                 read_optional(node, "start_as_continuum", &parse_continuum_start),
+                 read_optional(node, "steady_flow", &parse_steady_flow)),
       schedule_(read_optional(node, "balance", &parse_balance), spec_, path_) {}
 
 DemRveMaterial::~DemRveMaterial() = default;
@@ -220,6 +221,8 @@ materials::Report DemRveMaterial::report() const {
     add_quiet_points(r, quiet.stats());
   if (quiet.continuum_start_enabled())
     add_continuum_start(r, quiet.stats(), static_cast<double>(cost_.simulations));
+  if (selection_.flow().enabled())
+    add_steady_flow(r, selection_.flow().stats());
   return r;
 }
 

@@ -19,7 +19,8 @@ namespace mpm_lig::coupling {
 //! The material law of a point is its own DEM packing (the "dem_rve" material).
 //!
 //! Case node: {"type": "dem_rve", "rve": {RVE spec}, "packings": K, "ranks_per_rve": g,
-//! "quiet": {QuietSpec}, "start_as_continuum": {ContinuumStartSpec}, "balance": {BalanceSpec}}.
+//! "quiet": {QuietSpec}, "start_as_continuum": {ContinuumStartSpec}, "steady_flow":
+//! {SteadyFlowSpec}, "balance": {BalanceSpec}}.
 //! `prepare()` consolidates K packings (seeds rve.seed + k) or takes `rve.restart_file`;
 //! point i is cloned from packing i mod K. The MPM is replicated on every rank, so every
 //! rank calls update() with the same batch. An update goes through its parts in order:
@@ -57,7 +58,7 @@ class DemRveMaterial final : public materials::Material, public materials::Micro
   bool checkpointable() const override { return true; }
   void write_snapshot(std::size_t point, const std::string& prefix) override;
   //! dem_statistics() of its counters; the work shares; "stepping" once its RVEs are made;
-  //! "quiet_points" and "start_as_continuum" where the case asks for them.
+  //! "quiet_points", "start_as_continuum" and "steady_flow" where the case asks for them.
   materials::Report report() const override;
 
   //! Collective: every group writes its RVEs into `rank_<r>.bundle` in out.folder() (r: the

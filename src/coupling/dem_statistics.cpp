@@ -172,6 +172,24 @@ void add_quiet_points(Report& report, const QuietStats& q) {
                             {}});
 }
 
+void add_steady_flow(Report& report, const SteadyFlowStats& f) {
+  report.values.push_back(statistic("steady_flow.predicted_updates", f.predictions));
+  report.values.push_back(statistic("steady_flow.flows_begun", f.entries));
+  report.values.push_back(statistic("steady_flow.checks", f.checks));
+  report.values.push_back(hidden("steady_flow.error_sum", f.error_sum));
+  report.values.push_back(statistic("steady_flow.max_error", f.max_error, Combine::max));
+  report.values.push_back(statistic("steady_flow.checks_above_max_error", f.exceeded));
+  report.values.push_back(statistic("steady_flow.ended_by_turn", f.turns));
+  report.values.push_back(statistic("steady_flow.ended_by_volume_change", f.volume_exits));
+  report.values.push_back(statistic("steady_flow.skipped_shear_strain", f.skipped_shear));
+  report.derived.push_back({"steady_flow.mean_error",
+                            [](const Statistics& t) {
+                              return ratio(t, "steady_flow.error_sum", "steady_flow.checks", 0.0);
+                            },
+                            {},
+                            {}});
+}
+
 void add_continuum_start(Report& report, const QuietStats& q, double points) {
   report.values.push_back(statistic("start_as_continuum.continuum_updates", q.continuum_updates));
   report.values.push_back(statistic("start_as_continuum.switched_points", q.switches));

@@ -4,6 +4,7 @@
 
 #include "coupling/quiet_points.h"
 #include "coupling/rve_balance.h"
+#include "coupling/steady_flow.h"
 #include "materials/statistics.h"
 
 namespace mpm_lig::coupling {
@@ -45,6 +46,8 @@ void add_work_shares(materials::Report& report, double at_max, double low_stress
 void add_stepping(materials::Report& report, const SteppingCounters& s);
 //! "quiet_points": predicted and computed updates, the checks of the predictions.
 void add_quiet_points(materials::Report& report, const QuietStats& q);
+//! "steady_flow": predicted updates, flows begun and ended, the checks of the predictions.
+void add_steady_flow(materials::Report& report, const SteadyFlowStats& f);
 //! "start_as_continuum": the switches of `points` points from continuum to DEM, their jumps.
 void add_continuum_start(materials::Report& report, const QuietStats& q, double points);
 

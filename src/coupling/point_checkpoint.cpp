@@ -29,6 +29,7 @@ std::vector<Field> make_fields() {
   fields.push_back({"dem_work", DemWork::kValues, [](PointCheckpoint& p) { return p.work; }});
   fields.push_back(
       {"quiet_points", QuietPoints::kValues, [](PointCheckpoint& p) { return p.quiet; }});
+  fields.push_back({"steady_flow", SteadyFlow::kValues, [](PointCheckpoint& p) { return p.flow; }});
   return fields;
 }
 

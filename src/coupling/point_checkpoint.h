@@ -6,6 +6,7 @@
 #include "core/tensor.h"
 #include "coupling/dem_work.h"
 #include "coupling/quiet_points.h"
+#include "coupling/steady_flow.h"
 #include "materials/checkpoint_io.h"
 #include "rve/rve.h"
 
@@ -22,6 +23,7 @@ struct PointCheckpoint {
   rve::Rve::State rve;                      //!< rotation, streaming gradient, counters
   double work[DemWork::kValues] = {};       //!< the point's DEM work (DemWork row)
   double quiet[QuietPoints::kValues] = {};  //!< its quiet-point state (QuietPoints row)
+  double flow[SteadyFlow::kValues] = {};    //!< its steady-flow state (SteadyFlow row)
 };
 
 //! Doubles per point when packed (the sum of the field widths).

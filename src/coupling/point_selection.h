@@ -6,6 +6,7 @@
 #include "core/tensor.h"
 #include "coupling/packings.h"
 #include "coupling/quiet_points.h"
+#include "coupling/steady_flow.h"
 #include "materials/material.h"
 
 namespace mpm_lig::coupling {
@@ -28,17 +29,20 @@ struct DemBatch {
 
 //! Which points run DEM at an update (docs/DESIGN.md §8): every point of the batch, or with
 //! quiet points or a continuum start (QuietPoints) only those whose accumulated deformation
-//! asks for it; the others get their stress predicted.
+//! asks for it, and with steady flow (SteadyFlow) not the flowing points between their checks;
+//! the others get their stress predicted.
 class PointSelection {
  public:
-  PointSelection(const QuietSpec& quiet, const ContinuumStartSpec& continuum_start)
-      : quiet_spec_(quiet), continuum_start_spec_(continuum_start) {}
+  PointSelection(const QuietSpec& quiet, const ContinuumStartSpec& continuum_start,
+                 const SteadyFlowSpec& steady_flow)
+      : quiet_spec_(quiet), continuum_start_spec_(continuum_start), flow_spec_(steady_flow) {}
 
   //! `points` points of a `dimension`-D packing, point i cloned from packings[i mod K];
   //! `stress_floor` [Pa] as QuietPoints::start.
   void start(std::size_t points, int dimension, double stress_floor,
              const std::vector<Packing>& packings);
-  //! This update's batch of a material of `points` points: books step.dF with the quiet points.
+  //! This update's batch of a material of `points` points: books step.dF with the quiet and
+  //! the flowing points.
   DemBatch select(std::size_t points, const materials::MaterialStep& step);
   //! After the stresses are gathered into `stress` (every point's): checks the predictions of
   //! the points that ran DEM, and writes the predicted stresses of those that did not.
@@ -48,11 +52,16 @@ class PointSelection {
   //! Every point's quiet state (the same on every rank): checkpoints and statistics.
   const QuietPoints& quiet() const { return quiet_; }
   QuietPoints& quiet() { return quiet_; }
+  //! Every point's steady-flow state (the same on every rank).
+  const SteadyFlow& flow() const { return flow_; }
+  SteadyFlow& flow() { return flow_; }
 
  private:
   QuietSpec quiet_spec_;
   ContinuumStartSpec continuum_start_spec_;
+  SteadyFlowSpec flow_spec_;
   QuietPoints quiet_;
+  SteadyFlow flow_;
 };
 
 }  // namespace mpm_lig::coupling

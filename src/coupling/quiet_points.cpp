@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iterator>
 
+#include "coupling/plane_strain.h"
+
 namespace mpm_lig::coupling {
 
 const QuietStatField kQuietStatFields[12] = {
@@ -21,6 +23,8 @@ const QuietStatField kQuietStatFields[12] = {
     {"continuum_threshold_scale", &QuietStats::threshold_scale}};
 static_assert(sizeof(QuietStats) == std::size(kQuietStatFields) * sizeof(double),
               "every QuietStats field needs its checkpoint name in kQuietStatFields");
+using namespace plane;
+
 namespace {
 
 //! A tolerance is never tightened below this fraction of the case's.
@@ -32,49 +36,6 @@ constexpr double kSmallestThresholdScale = 1.0 / 64.0;
 constexpr double kMeasurableStrain = 0.1;
 //! A volumetric or deviatoric part smaller than this fraction of the increment measures nothing.
 constexpr double kMeasurablePart = 0.1;
-
-//! Trace over the first `d` axes (the plane of a 2D packing, all three in 3D).
-double trace_d(const Mat3& a, int d) {
-  double t = 0.0;
-  for (int i = 0; i < d; ++i)
-    t += a(i, i);
-  return t;
-}
-
-Mat3 in_plane(const Mat3& a, int d) {
-  Mat3 b = Mat3::Zero();
-  b.topLeftCorner(d, d) = a.topLeftCorner(d, d);
-  return b;
-}
-
-Mat3 identity_d(int d) {
-  Mat3 b = Mat3::Zero();
-  for (int i = 0; i < d; ++i)
-    b(i, i) = 1.0;
-  return b;
-}
-
-//! The small strain of `increment` in the first `d` axes, split into volumetric and
-//! deviatoric parts.
-struct StrainParts {
-  Mat3 strain;
-  double volumetric;
-  Mat3 deviatoric;
-};
-
-StrainParts strain_parts(const Mat3& increment, int d) {
-  const Mat3 inc = increment - Mat3::Identity();
-  const Mat3 strain = in_plane(0.5 * (inc + inc.transpose()), d);
-  const double volumetric = trace_d(strain, d);
-  return {strain, volumetric, strain - (volumetric / d) * identity_d(d)};
-}
-
-//! The first-order rotation of `stress` by the spin of `increment` in the first `d` axes.
-Mat3 spin_of(const Mat3& stress, const Mat3& increment, int d) {
-  const Mat3 inc = increment - Mat3::Identity();
-  const Mat3 omega = in_plane(0.5 * (inc - inc.transpose()), d);
-  return omega * stress - stress * omega;
-}
 
 //! sin of the mobilised friction angle, (σ1 - σ3) / (σ1 + σ3) compression positive, in the
 //! first `d` axes; 1 when the stress is not compressive.

@@ -1,0 +1,243 @@
+#include "coupling/steady_flow.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include <Eigen/SVD>
+
+#include "coupling/plane_strain.h"
+
+namespace mpm_lig::coupling {
+
+const SteadyFlowStatField kSteadyFlowStatFields[9] = {
+    {"flow_predictions", &SteadyFlowStats::predictions},
+    {"flow_entries", &SteadyFlowStats::entries},
+    {"flow_checks", &SteadyFlowStats::checks},
+    {"flow_error_sum", &SteadyFlowStats::error_sum},
+    {"flow_max_error", &SteadyFlowStats::max_error},
+    {"flow_exceeded", &SteadyFlowStats::exceeded},
+    {"flow_turns", &SteadyFlowStats::turns},
+    {"flow_volume_exits", &SteadyFlowStats::volume_exits},
+    {"flow_skipped_shear", &SteadyFlowStats::skipped_shear}};
+static_assert(sizeof(SteadyFlowStats) == std::size(kSteadyFlowStatFields) * sizeof(double),
+              "every SteadyFlowStats field needs its checkpoint name in kSteadyFlowStatFields");
+
+using namespace plane;
+
+namespace {
+
+//! A check's stress joins the anchor's running mean, over at most this many samples (the
+//! window mean counts as one).
+constexpr double kMostSamples = 10.0;
+//! An increment's shear below this fraction of the flow's γ per update when it began is too
+//! small to tell its direction.
+constexpr double kMeasurableShear = 0.25;
+constexpr int kTensorValues = 6 * 9;
+
+//! Engineering shear strain γ = √2 |e| of a deviatoric strain e (γ of a simple shear).
+double shear_of(const Mat3& deviatoric) {
+  return std::sqrt(2.0) * deviatoric.norm();
+}
+
+double stress_ratio(const Mat3& stress, int d) {
+  const double p = mean_pressure(stress, d);
+  return p > 0.0 ? deviatoric_stress(stress, d) / p : 0.0;
+}
+
+//! Cosine of the angle between two deviatoric tensors (0 when either is zero).
+double cosine(const Mat3& a, const Mat3& b) {
+  const double n = a.norm() * b.norm();
+  return n > 0.0 ? a.cwiseProduct(b).sum() / n : 0.0;
+}
+
+}  // namespace
+
+SteadyFlowSpec parse_steady_flow(const CaseNode& node) {
+  SteadyFlowSpec s;
+  s.enabled = node.get_or<bool>("enabled", true);
+  s.window = node.in_range_or("window", 1e-4, 1.0, s.window);
+  s.stress_change = node.in_range_or("stress_change", 1e-4, 1.0, s.stress_change);
+  s.dilatancy = node.in_range_or("dilatancy", 1e-4, 1.0, s.dilatancy);
+  s.volume_change = node.in_range_or("volume_change", 1e-6, 0.1, s.volume_change);
+  s.turn_deg = node.in_range_or("turn_deg", 1.0, 90.0, s.turn_deg);
+  s.max_error = node.in_range_or("max_error", 1e-4, 1.0, s.max_error);
+  s.check_every = node.get_or<int>("check_every", s.check_every);
+  if (s.check_every < 1 || s.check_every > 1'000'000)
+    node.fail("check_every", "must be between 1 and 1000000");
+  return s;
+}
+
+void SteadyFlow::start(std::size_t points, const SteadyFlowSpec& spec, int dimension,
+                       double stress_floor) {
+  spec_ = spec;
+  dimension_ = dimension;
+  stress_floor_ = stress_floor;
+  for (auto* v : {&pending_, &catch_up_})
+    v->assign(points, Mat3::Identity());
+  for (auto* v : {&anchor_, &direction_, &stress_sum_, &shear_sum_, &last_shear_})
+    v->assign(points, Mat3::Zero());
+  rows_.assign(points, Row{});
+  stats_ = SteadyFlowStats{};
+}
+
+Mat3 SteadyFlow::reduced_increment(const Mat3& dF, const Mat3& pending) const {
+  const int d = dimension_;
+  const Eigen::JacobiSVD<Mat3> svd(pending, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Mat3 rotation = svd.matrixU() * svd.matrixV().transpose();
+  const double volume_ratio = pending.topLeftCorner(d, d).determinant();
+  Mat3 dilation = Mat3::Identity();
+  dilation.topLeftCorner(d, d) *= std::pow(volume_ratio, 1.0 / d);
+  return dF * rotation * dilation;
+}
+
+bool SteadyFlow::accumulate(std::size_t point, const Mat3& dF) {
+  const int d = dimension_;
+  Row& r = row(point);
+  const StrainParts e = strain_parts(dF, d);
+  catch_up_[point] = reduced_increment(dF, pending_[point]);
+  pending_[point] = dF * pending_[point];
+  anchor_[point] += spin_of(anchor_[point], dF, d);
+  direction_[point] += spin_of(direction_[point], dF, d);
+  r.flow_volumetric += e.volumetric;
+  const double shear = shear_of(e.deviatoric);
+  const bool measurable = shear >= kMeasurableShear * r.typical_shear;
+  r.checking = 1.0;
+  if (measurable && cosine(e.deviatoric, direction_[point]) < std::cos(spec_.turn_deg * kDegree)) {
+    stats_.turns += 1.0;
+    end_flow(point);
+    return true;
+  }
+  if (std::abs(r.flow_volumetric) > spec_.volume_change) {
+    stats_.volume_exits += 1.0;
+    end_flow(point);
+    return true;
+  }
+  if (r.flow_updates >= spec_.check_every)
+    return true;
+  r.checking = 0.0;
+  r.flow_updates += 1.0;
+  stats_.predictions += 1.0;
+  stats_.skipped_shear += shear;
+  return false;
+}
+
+void SteadyFlow::end_flow(std::size_t point) {
+  Row& r = row(point);
+  r.flowing = 0.0;
+  r.has_last = 0.0;
+  r.window = Window{};
+  stress_sum_[point] = shear_sum_[point] = Mat3::Zero();
+}
+
+void SteadyFlow::after_dem(std::size_t point, const Mat3& increment, const Mat3& stress) {
+  Row& r = row(point);
+  const bool was_flowing = r.flowing != 0.0;  // false when this update ended the flow
+  if (r.checking != 0.0) {
+    // A flowing point's check, or the DEM update that ended its flow.
+    check(point, stress);
+    pending_[point] = Mat3::Identity();
+    r.flow_updates = 0.0;
+    r.checking = 0.0;
+    if (was_flowing)
+      return;
+  }
+  add_to_window(point, increment, stress);
+}
+
+void SteadyFlow::check(std::size_t point, const Mat3& stress) {
+  Row& r = row(point);
+  const double error = (anchor_[point] - stress).norm() / std::max(stress.norm(), stress_floor_);
+  stats_.checks += 1.0;
+  stats_.error_sum += error;
+  stats_.max_error = std::max(stats_.max_error, error);
+  if (r.flowing == 0.0)
+    return;
+  if (error > spec_.max_error) {
+    stats_.exceeded += 1.0;
+    end_flow(point);
+    return;
+  }
+  r.samples = std::min(r.samples + 1.0, kMostSamples);
+  anchor_[point] += (stress - anchor_[point]) / r.samples;
+}
+
+void SteadyFlow::add_to_window(std::size_t point, const Mat3& increment, const Mat3& stress) {
+  const int d = dimension_;
+  Row& r = row(point);
+  const StrainParts e = strain_parts(increment, d);
+  const double shear = shear_of(e.deviatoric);
+  Window& w = r.window;
+  w.shear += shear;
+  w.volumetric += e.volumetric;
+  w.pressure += mean_pressure(stress, d) * shear;
+  w.ratio += stress_ratio(stress, d) * shear;
+  w.updates += 1.0;
+  stress_sum_[point] += stress * shear;
+  shear_sum_[point] += e.deviatoric;
+  if (w.shear >= spec_.window)
+    close_window(point);
+}
+
+void SteadyFlow::close_window(std::size_t point) {
+  Row& r = row(point);
+  const Window w = r.window;
+  const double pressure = w.pressure / w.shear;
+  const double ratio = w.ratio / w.shear;
+  const Mat3 shear =
+      shear_sum_[point].norm() > 0.0 ? Mat3(shear_sum_[point].normalized()) : Mat3(Mat3::Zero());
+  const bool steady = r.has_last != 0.0 && pressure > stress_floor_ &&
+                      std::abs(pressure - r.last_pressure) <= spec_.stress_change * pressure &&
+                      std::abs(ratio - r.last_ratio) <= spec_.stress_change * ratio &&
+                      std::abs(w.volumetric) <= spec_.dilatancy * w.shear &&
+                      cosine(shear, last_shear_[point]) >= std::cos(spec_.turn_deg * kDegree);
+  if (steady) {
+    r.flowing = 1.0;
+    r.flow_updates = 0.0;
+    r.flow_volumetric = 0.0;
+    r.samples = 1.0;
+    r.typical_shear = w.shear / w.updates;
+    anchor_[point] = stress_sum_[point] / w.shear;
+    direction_[point] = shear;
+    stats_.entries += 1.0;
+  }
+  r.last_pressure = pressure;
+  r.last_ratio = ratio;
+  r.has_last = 1.0;
+  last_shear_[point] = shear;
+  r.window = Window{};
+  stress_sum_[point] = shear_sum_[point] = Mat3::Zero();
+}
+
+void SteadyFlow::save_row(std::size_t point, double* v) const {
+  const Mat3* tensors[] = {&pending_[point],    &anchor_[point],    &direction_[point],
+                           &stress_sum_[point], &shear_sum_[point], &last_shear_[point]};
+  for (const Mat3* t : tensors)
+    v = std::copy(t->data(), t->data() + 9, v);
+  const Row& r = row(point);
+  const double rest[] = {r.window.shear,   r.window.volumetric, r.window.pressure, r.window.ratio,
+                         r.window.updates, r.last_pressure,     r.last_ratio,      r.has_last,
+                         r.flowing,        r.flow_updates,      r.flow_volumetric, r.samples,
+                         r.typical_shear,  r.checking};
+  std::copy(std::begin(rest), std::end(rest), v);
+}
+
+void SteadyFlow::restore_row(std::size_t point, const double* v) {
+  Mat3* tensors[] = {&pending_[point],    &anchor_[point],    &direction_[point],
+                     &stress_sum_[point], &shear_sum_[point], &last_shear_[point]};
+  for (Mat3* t : tensors) {
+    std::copy(v, v + 9, t->data());
+    v += 9;
+  }
+  Row& r = row(point);
+  double* rest[] = {&r.window.shear,   &r.window.volumetric, &r.window.pressure, &r.window.ratio,
+                    &r.window.updates, &r.last_pressure,     &r.last_ratio,      &r.has_last,
+                    &r.flowing,        &r.flow_updates,      &r.flow_volumetric, &r.samples,
+                    &r.typical_shear,  &r.checking};
+  for (double* x : rest)
+    *x = *v++;
+}
+
+static_assert(SteadyFlow::kValues == kTensorValues + 14, "a SteadyFlow row: 6 tensors, 14 values");
+
+}  // namespace mpm_lig::coupling

@@ -1,0 +1,197 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "coupling/steady_flow.h"
+
+namespace mpm_lig::coupling {
+namespace {
+
+constexpr double kStep = 0.002;  // shear strain γ of one update
+constexpr double kFloor = 1e3;   // stress floor [Pa]
+
+// A critical-state stress in simple shear: p = 100 kPa, q/p = 0.5 (shear stress on xy).
+Mat3 critical_stress(double scale = 1.0) {
+  Mat3 s = Mat3::Zero();
+  s(0, 0) = s(1, 1) = s(2, 2) = -1e5 * scale;
+  s(0, 1) = s(1, 0) = 0.5e5 * scale;
+  return s;
+}
+
+// Simple shear γ along x with a volumetric strain `volumetric` (in the plane).
+Mat3 shear_step(double gamma, double volumetric = 0.0) {
+  Mat3 dF = Mat3::Identity();
+  dF(0, 1) = gamma;
+  dF(0, 0) += 0.5 * volumetric;
+  dF(1, 1) += 0.5 * volumetric;
+  return dF;
+}
+
+SteadyFlowSpec spec() {
+  SteadyFlowSpec s;
+  s.enabled = true;
+  s.window = 10 * kStep - 1e-12;  // ten updates a window
+  s.check_every = 5;
+  return s;
+}
+
+SteadyFlow started(const SteadyFlowSpec& s = spec()) {
+  SteadyFlow f;
+  f.start(1, s, 2, kFloor);
+  return f;
+}
+
+// `updates` DEM updates of point 0 under shear_step(kStep, volumetric), the stress of the k-th
+// given by `stress(k)`.
+template <class Stress>
+void run_dem(SteadyFlow& f, int updates, Stress stress, double volumetric = 0.0) {
+  for (int k = 0; k < updates; ++k)
+    f.after_dem(0, shear_step(kStep, volumetric), stress(k));
+}
+
+// ±1 % noise on the shear stress, alternating: a window of ten has the exact mean.
+Mat3 noisy(int k) {
+  Mat3 s = critical_stress();
+  s(0, 1) = s(1, 0) = 0.5e5 * (k % 2 ? 1.01 : 0.99);
+  return s;
+}
+
+TEST(SteadyFlow, ReducedIncrementKeepsTheRotationAndTheVolumeAndDropsTheStretch) {
+  const SteadyFlow f = started();
+  // Simple shear γ: polar rotation by θ, tan θ = γ/2 (clockwise for a positive γ along x).
+  const double gamma = 0.3;
+  const Mat3 reduced = f.reduced_increment(Mat3::Identity(), shear_step(gamma));
+  const double theta = std::atan(0.5 * gamma);
+  EXPECT_NEAR(reduced(0, 0), std::cos(theta), 1e-12);
+  EXPECT_NEAR(reduced(0, 1), std::sin(theta), 1e-12);
+  EXPECT_NEAR(reduced(1, 0), -std::sin(theta), 1e-12);
+  EXPECT_NEAR(reduced(1, 1), std::cos(theta), 1e-12);
+  EXPECT_NEAR(reduced(2, 2), 1.0, 1e-12);
+  // A rotation with a uniform dilation is kept whole, and the new increment comes first.
+  Mat3 rotated_dilation = Mat3::Identity();
+  const double a = 0.2, scale = 1.01;
+  rotated_dilation.topLeftCorner(2, 2) << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  rotated_dilation.topLeftCorner(2, 2) *= scale;
+  const Mat3 dF = shear_step(0.001);
+  EXPECT_LT((f.reduced_increment(dF, rotated_dilation) - dF * rotated_dilation).norm(), 1e-12);
+  // The volume of a stretch with a volume change is kept: det = J.
+  const Mat3 stretch = shear_step(0.2, 0.02);
+  EXPECT_NEAR(f.reduced_increment(Mat3::Identity(), stretch).topLeftCorner(2, 2).determinant(),
+              stretch.topLeftCorner(2, 2).determinant(), 1e-12);
+}
+
+TEST(SteadyFlow, TwoSteadyWindowsBeginAFlowAtTheWindowMean) {
+  SteadyFlow f = started();
+  run_dem(f, 19, noisy);
+  EXPECT_FALSE(f.flowing(0));  // one window closed: nothing to compare it with
+  run_dem(f, 1, [](int) { return noisy(19); });
+  ASSERT_TRUE(f.flowing(0));
+  EXPECT_LT((f.predicted(0) - critical_stress()).norm(), 1e-9 * critical_stress().norm());
+  EXPECT_EQ(f.stats().entries, 1.0);
+}
+
+TEST(SteadyFlow, AHardeningOrDilatingPointDoesNotFlow) {
+  SteadyFlow hardening = started();
+  // q/p up by 2 % an update: 22 % between windows, beyond stress_change 10 %.
+  run_dem(hardening, 60, [](int k) {
+    Mat3 s = critical_stress();
+    s(0, 1) = s(1, 0) = 0.5e5 * std::pow(1.02, k);
+    return s;
+  });
+  EXPECT_FALSE(hardening.flowing(0));
+  SteadyFlow dilating = started();
+  run_dem(dilating, 60, noisy, 0.1 * kStep);  // dε_v/dγ = 0.1 > dilatancy 0.05
+  EXPECT_FALSE(dilating.flowing(0));
+  SteadyFlow unloaded = started();  // p below the stress floor: no flow recognised
+  run_dem(unloaded, 60, [](int) { return critical_stress(1e-3); });
+  EXPECT_FALSE(unloaded.flowing(0));
+  EXPECT_EQ(hardening.stats().entries + dilating.stats().entries + unloaded.stats().entries, 0.0);
+}
+
+TEST(SteadyFlow, AFlowingPointIsPredictedAndCheckedEveryCheckEvery) {
+  SteadyFlow f = started();
+  run_dem(f, 20, noisy);
+  ASSERT_TRUE(f.flowing(0));
+  for (int k = 0; k < 5; ++k)
+    EXPECT_FALSE(f.accumulate(0, shear_step(kStep))) << k;
+  EXPECT_NEAR(f.stats().skipped_shear, 5 * kStep, 1e-12);
+  ASSERT_TRUE(f.accumulate(0, shear_step(kStep)));  // the check
+  // The RVE runs this update's increment and the rotation it missed, not the shear.
+  const Mat3 missed = shear_step(kStep) * shear_step(kStep) * shear_step(kStep) *
+                      shear_step(kStep) * shear_step(kStep);
+  EXPECT_LT((f.catch_up(0) - f.reduced_increment(shear_step(kStep), missed)).norm(), 1e-14);
+  // The prediction is the window mean rotated with the point's spin: d(σxx - σyy) = 2 τ dγ.
+  const Mat3 prediction = f.predicted(0);
+  EXPECT_NEAR(prediction(0, 0) - prediction(1, 1), 2.0 * 0.5e5 * 6 * kStep, 1e-3 * 0.5e5);
+  const Mat3 dem = critical_stress(1.02);
+  f.after_dem(0, f.catch_up(0), dem);
+  EXPECT_TRUE(f.flowing(0));
+  EXPECT_EQ(f.stats().checks, 1.0);
+  EXPECT_NEAR(f.stats().max_error, (prediction - dem).norm() / dem.norm(), 1e-15);
+  EXPECT_LT(f.stats().max_error, 0.05);
+  // The check's stress joins the mean of two samples.
+  EXPECT_LT((f.predicted(0) - 0.5 * (prediction + dem)).norm(), 1e-9 * dem.norm());
+  EXPECT_FALSE(f.accumulate(0, shear_step(kStep)));  // flowing on
+}
+
+TEST(SteadyFlow, ATurnAVolumeChangeOrAFailedCheckEndsTheFlow) {
+  SteadyFlow turned = started();
+  run_dem(turned, 20, noisy);
+  EXPECT_TRUE(turned.accumulate(0, shear_step(-kStep)));  // reversed shear
+  EXPECT_FALSE(turned.flowing(0));
+  EXPECT_EQ(turned.stats().turns, 1.0);
+  // A tiny increment tells no direction: it does not end a flow.
+  SteadyFlow paused = started();
+  run_dem(paused, 20, noisy);
+  EXPECT_FALSE(paused.accumulate(0, shear_step(-0.1 * kStep)));
+
+  SteadyFlow compressed = started();
+  run_dem(compressed, 20, noisy);
+  EXPECT_FALSE(compressed.accumulate(0, shear_step(kStep, -1.5e-3)));
+  EXPECT_TRUE(compressed.accumulate(0, shear_step(kStep, -1.5e-3)));  // 3e-3 > 2e-3
+  EXPECT_EQ(compressed.stats().volume_exits, 1.0);
+  EXPECT_FALSE(compressed.flowing(0));
+
+  SteadyFlow failed = started();
+  run_dem(failed, 20, noisy);
+  for (int k = 0; k < 5; ++k)
+    failed.accumulate(0, shear_step(kStep));
+  ASSERT_TRUE(failed.accumulate(0, shear_step(kStep)));
+  failed.after_dem(0, failed.catch_up(0), critical_stress(0.7));  // 30 % off, above 15 %
+  EXPECT_FALSE(failed.flowing(0));
+  EXPECT_EQ(failed.stats().exceeded, 1.0);
+  // After an end the point needs two new steady windows.
+  run_dem(failed, 19, noisy);
+  EXPECT_FALSE(failed.flowing(0));
+  run_dem(failed, 1, noisy);
+  EXPECT_TRUE(failed.flowing(0));
+}
+
+TEST(SteadyFlow, ACheckpointRowContinuesTheSameWay) {
+  SteadyFlow f = started();
+  run_dem(f, 20, noisy);
+  f.accumulate(0, shear_step(kStep));
+  f.accumulate(0, shear_step(kStep));
+  std::vector<double> row(SteadyFlow::kValues);
+  f.save_row(0, row.data());
+  SteadyFlow g = started();
+  g.restore_row(0, row.data());
+  g.restore_stats(f.stats());
+  for (int k = 0; k < 8; ++k) {
+    const Mat3 dF = shear_step(kStep * (1.0 + 0.1 * k));
+    const bool runs = f.accumulate(0, dF);
+    ASSERT_EQ(runs, g.accumulate(0, dF)) << k;
+    if (runs) {
+      EXPECT_EQ(f.catch_up(0), g.catch_up(0));
+      f.after_dem(0, f.catch_up(0), critical_stress(1.01));
+      g.after_dem(0, g.catch_up(0), critical_stress(1.01));
+    }
+    EXPECT_EQ(f.predicted(0), g.predicted(0));
+  }
+  EXPECT_EQ(f.stats().checks, g.stats().checks);
+  EXPECT_EQ(f.stats().skipped_shear, g.stats().skipped_shear);
+}
+
+}  // namespace
+}  // namespace mpm_lig::coupling
