@@ -179,6 +179,7 @@ void add_steady_flow(Report& report, const SteadyFlowStats& f) {
   report.values.push_back(hidden("steady_flow.error_sum", f.error_sum));
   report.values.push_back(statistic("steady_flow.max_error", f.max_error, Combine::max));
   report.values.push_back(statistic("steady_flow.checks_above_max_error", f.exceeded));
+  report.values.push_back(statistic("steady_flow.ended_by_drift", f.drifts));
   report.values.push_back(statistic("steady_flow.ended_by_turn", f.turns));
   report.values.push_back(statistic("steady_flow.ended_by_volume_change", f.volume_exits));
   report.values.push_back(statistic("steady_flow.skipped_shear_strain", f.skipped_shear));

@@ -9,6 +9,9 @@ void PointSelection::start(std::size_t points, int dimension, double stress_floo
   for (std::size_t point = 0; point < points; ++point) {
     const Packing& packing = packings[packing_of(point, packings.size())];
     quiet_.set_packing(point, packing.stress, packing.wave_modulus, packing.lateral_modulus);
+    flow_.set_packing(
+        point, mean_pressure(packing.stress, dimension),
+        packing_moduli(packing.wave_modulus, packing.lateral_modulus, dimension).bulk);
   }
 }
 

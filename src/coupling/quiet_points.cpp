@@ -85,23 +85,26 @@ void QuietPoints::start(std::size_t points, const QuietSpec& spec, int dimension
   stats_ = QuietStats{};
 }
 
+PackingModuli packing_moduli(double wave_modulus, double lateral_modulus, int dimension) {
+  // M = K + G and L = K - G in plane strain (K the areal bulk modulus); M = K + 4G/3 and
+  // L = K - 2G/3 in 3D.
+  const double shear = 0.5 * (wave_modulus - lateral_modulus);
+  const double bulk = dimension == 2 ? wave_modulus - shear : wave_modulus - 4.0 * shear / 3.0;
+  if (shear > 0.0 && bulk > 0.0 && shear <= wave_modulus && bulk <= wave_modulus)
+    return {bulk, shear};
+  const double equal = dimension == 2 ? 0.5 * wave_modulus : 3.0 * wave_modulus / 7.0;
+  return {equal, equal};
+}
+
 void QuietPoints::set_packing(std::size_t point, const Mat3& stress, double wave_modulus,
                               double lateral_modulus) {
   anchor_[point] = stress;
   predicted_[point] = stress;
   Row& r = row(point);
   r.wave_modulus = wave_modulus;
-  // M = K + G and L = K - G in plane strain (K the areal bulk modulus); M = K + 4G/3 and
-  // L = K - 2G/3 in 3D.
-  const double shear = 0.5 * (wave_modulus - lateral_modulus);
-  const double bulk = dimension_ == 2 ? wave_modulus - shear : wave_modulus - 4.0 * shear / 3.0;
-  if (shear > 0.0 && bulk > 0.0 && shear <= wave_modulus && bulk <= wave_modulus) {
-    r.shear = shear;
-    r.bulk = bulk;
-  } else {
-    // Equal bulk and shear moduli with that M.
-    r.shear = r.bulk = dimension_ == 2 ? 0.5 * wave_modulus : 3.0 * wave_modulus / 7.0;
-  }
+  const PackingModuli moduli = packing_moduli(wave_modulus, lateral_modulus, dimension_);
+  r.bulk = moduli.bulk;
+  r.shear = moduli.shear;
 }
 
 Mat3 QuietPoints::predict(const Mat3& anchor, const Mat3& increment, double bulk,

@@ -30,6 +30,15 @@ struct ContinuumStartSpec {
 
 ContinuumStartSpec parse_continuum_start(const CaseNode& node);
 
+//! Isotropic moduli of a packing from its probe: constrained (P-wave) modulus M and lateral
+//! modulus L (Δσ_yy / ε_xx under uniaxial strain) give G = (M - L) / 2 and K = M - G (2D) or
+//! M - 4G/3 (3D), or equal K and G with that M if that pair is not a stiffness.
+struct PackingModuli {
+  double bulk;
+  double shear;
+};
+PackingModuli packing_moduli(double wave_modulus, double lateral_modulus, int dimension);
+
 //! What the checks of the predictions measured over the run.
 struct QuietStats {
   double predictions = 0.0;  //!< point-updates whose stress was predicted (no DEM)
@@ -90,10 +99,8 @@ class QuietPoints {
   //! Whether `point` is still its packing's continuum (never ran DEM).
   bool is_continuum(std::size_t point) const { return row(point).continuum != 0.0; }
   //! `point` before any update: its packing's stress, constrained (P-wave) modulus M and
-  //! lateral modulus L (Δσ_yy / ε_xx under uniaxial strain). The moduli start at the isotropic
-  //! pair these give, G = (M - L) / 2 and K = M - G (2D) or M - 4G/3 (3D), or equal K and G
-  //! with that M if that pair is not a stiffness; a secant measured later is bounded by M (a larger
-  //! one is the noise of a small increment).
+  //! lateral modulus L. The moduli start at packing_moduli(M, L); a secant measured later is
+  //! bounded by M (a larger one is the noise of a small increment).
   void set_packing(std::size_t point, const Mat3& stress, double wave_modulus,
                    double lateral_modulus);
 

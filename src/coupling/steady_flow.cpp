@@ -4,19 +4,18 @@
 #include <cmath>
 #include <iterator>
 
-#include <Eigen/SVD>
-
 #include "coupling/plane_strain.h"
 
 namespace mpm_lig::coupling {
 
-const SteadyFlowStatField kSteadyFlowStatFields[9] = {
+const SteadyFlowStatField kSteadyFlowStatFields[10] = {
     {"flow_predictions", &SteadyFlowStats::predictions},
     {"flow_entries", &SteadyFlowStats::entries},
     {"flow_checks", &SteadyFlowStats::checks},
     {"flow_error_sum", &SteadyFlowStats::error_sum},
     {"flow_max_error", &SteadyFlowStats::max_error},
     {"flow_exceeded", &SteadyFlowStats::exceeded},
+    {"flow_drifts", &SteadyFlowStats::drifts},
     {"flow_turns", &SteadyFlowStats::turns},
     {"flow_volume_exits", &SteadyFlowStats::volume_exits},
     {"flow_skipped_shear", &SteadyFlowStats::skipped_shear}};
@@ -81,14 +80,26 @@ void SteadyFlow::start(std::size_t points, const SteadyFlowSpec& spec, int dimen
   stats_ = SteadyFlowStats{};
 }
 
+void SteadyFlow::set_packing(std::size_t point, double pressure, double bulk_modulus) {
+  Row& r = row(point);
+  r.packing_pressure = std::max(pressure, stress_floor_);
+  r.packing_bulk = bulk_modulus;
+}
+
+double SteadyFlow::flow_bulk(std::size_t point) const {
+  const Row& r = row(point);
+  if (!(r.packing_pressure > 0.0))
+    return 0.0;  // no packing given (a unit test of the windows alone)
+  const double p = std::max(mean_pressure(anchor_[point], dimension_), stress_floor_);
+  return r.packing_bulk * std::sqrt(p / r.packing_pressure);
+}
+
 Mat3 SteadyFlow::reduced_increment(const Mat3& dF, const Mat3& pending) const {
   const int d = dimension_;
-  const Eigen::JacobiSVD<Mat3> svd(pending, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Mat3 rotation = svd.matrixU() * svd.matrixV().transpose();
   const double volume_ratio = pending.topLeftCorner(d, d).determinant();
   Mat3 dilation = Mat3::Identity();
   dilation.topLeftCorner(d, d) *= std::pow(volume_ratio, 1.0 / d);
-  return dF * rotation * dilation;
+  return dF * dilation;
 }
 
 bool SteadyFlow::accumulate(std::size_t point, const Mat3& dF) {
@@ -97,9 +108,8 @@ bool SteadyFlow::accumulate(std::size_t point, const Mat3& dF) {
   const StrainParts e = strain_parts(dF, d);
   catch_up_[point] = reduced_increment(dF, pending_[point]);
   pending_[point] = dF * pending_[point];
-  anchor_[point] += spin_of(anchor_[point], dF, d);
-  direction_[point] += spin_of(direction_[point], dF, d);
   r.flow_volumetric += e.volumetric;
+  anchor_[point] += flow_bulk(point) * e.volumetric * identity_d(d);
   const double shear = shear_of(e.deviatoric);
   const bool measurable = shear >= kMeasurableShear * r.typical_shear;
   r.checking = 1.0;
@@ -139,8 +149,8 @@ void SteadyFlow::after_dem(std::size_t point, const Mat3& increment, const Mat3&
     pending_[point] = Mat3::Identity();
     r.flow_updates = 0.0;
     r.checking = 0.0;
-    if (was_flowing)
-      return;
+    if (was_flowing && r.flowing == 0.0)
+      return;  // a failed check: new windows from the next update on
   }
   add_to_window(point, increment, stress);
 }
@@ -179,30 +189,45 @@ void SteadyFlow::add_to_window(std::size_t point, const Mat3& increment, const M
     close_window(point);
 }
 
+bool SteadyFlow::steady(std::size_t point, const Window& w, const Mat3& shear) const {
+  const Row& r = row(point);
+  const double pressure = w.pressure / w.shear;
+  const double ratio = w.ratio / w.shear;
+  // A flowing point's windows are made of its checks, whose increments carry the volume
+  // change of the whole flow: its volume is held by volume_change instead.
+  const bool constant_volume =
+      r.flowing != 0.0 || std::abs(w.volumetric) <= spec_.dilatancy * w.shear;
+  return r.has_last != 0.0 && pressure > stress_floor_ &&
+         std::abs(pressure - r.last_pressure) <= spec_.stress_change * pressure &&
+         std::abs(ratio - r.last_ratio) <= spec_.stress_change * ratio && constant_volume &&
+         cosine(shear, last_shear_[point]) >= std::cos(spec_.turn_deg * kDegree);
+}
+
 void SteadyFlow::close_window(std::size_t point) {
   Row& r = row(point);
   const Window w = r.window;
-  const double pressure = w.pressure / w.shear;
-  const double ratio = w.ratio / w.shear;
   const Mat3 shear =
       shear_sum_[point].norm() > 0.0 ? Mat3(shear_sum_[point].normalized()) : Mat3(Mat3::Zero());
-  const bool steady = r.has_last != 0.0 && pressure > stress_floor_ &&
-                      std::abs(pressure - r.last_pressure) <= spec_.stress_change * pressure &&
-                      std::abs(ratio - r.last_ratio) <= spec_.stress_change * ratio &&
-                      std::abs(w.volumetric) <= spec_.dilatancy * w.shear &&
-                      cosine(shear, last_shear_[point]) >= std::cos(spec_.turn_deg * kDegree);
-  if (steady) {
-    r.flowing = 1.0;
-    r.flow_updates = 0.0;
-    r.flow_volumetric = 0.0;
-    r.samples = 1.0;
-    r.typical_shear = w.shear / w.updates;
-    anchor_[point] = stress_sum_[point] / w.shear;
-    direction_[point] = shear;
-    stats_.entries += 1.0;
+  const bool is_steady = steady(point, w, shear);
+  if (r.flowing != 0.0 && !is_steady) {
+    stats_.drifts += 1.0;
+    end_flow(point);
+    return;
   }
-  r.last_pressure = pressure;
-  r.last_ratio = ratio;
+  if (is_steady) {
+    if (r.flowing == 0.0) {
+      r.flowing = 1.0;
+      r.flow_updates = 0.0;
+      r.flow_volumetric = 0.0;
+      r.typical_shear = w.shear / w.updates;
+      stats_.entries += 1.0;
+    }
+    direction_[point] = shear;
+    r.samples = 1.0;
+    anchor_[point] = stress_sum_[point] / w.shear;
+  }
+  r.last_pressure = w.pressure / w.shear;
+  r.last_ratio = w.ratio / w.shear;
   r.has_last = 1.0;
   last_shear_[point] = shear;
   r.window = Window{};
@@ -238,6 +263,6 @@ void SteadyFlow::restore_row(std::size_t point, const double* v) {
     *x = *v++;
 }
 
-static_assert(SteadyFlow::kValues == kTensorValues + 14, "a SteadyFlow row: 6 tensors, 14 values");
+static_assert(SteadyFlow::kValues == kTensorValues + 16, "a SteadyFlow row: 6 tensors, 16 values");
 
 }  // namespace mpm_lig::coupling

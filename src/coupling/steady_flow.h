@@ -12,10 +12,10 @@ namespace mpm_lig::coupling {
 struct SteadyFlowSpec {
   bool enabled = false;
   double window = 0.02;         //!< shear strain γ of one window of DEM updates
-  double stress_change = 0.1;  //!< largest change of p and of q/p between two windows (relative)
+  double stress_change = 0.1;   //!< largest change of p and of q/p between two windows (relative)
   double dilatancy = 0.05;      //!< largest |Δε_v / Δγ| over a window
   double volume_change = 2e-3;  //!< |ε_v| since the flow began that ends it
-  double turn_deg = 30.0;       //!< turn of the shear direction that ends a flow
+  double turn_deg = 30.0;       //!< angle between deviatoric strains that ends a flow
   double max_error = 0.15;      //!< check error (relative to |σ|) that ends a flow
   int check_every = 10;         //!< a flowing point runs one DEM update (a check) this often
 };
@@ -30,6 +30,7 @@ struct SteadyFlowStats {
   double error_sum = 0.0;      //!< sum of their relative errors
   double max_error = 0.0;      //!< largest of them
   double exceeded = 0.0;       //!< checks above max_error (each ended its flow)
+  double drifts = 0.0;         //!< flows ended by a window of checks that was not steady
   double turns = 0.0;          //!< flows ended by a turn of the shear direction
   double volume_exits = 0.0;   //!< flows ended by a volume change
   double skipped_shear = 0.0;  //!< shear strain γ the flowing points' RVEs did not run
@@ -41,7 +42,7 @@ struct SteadyFlowStatField {
   double SteadyFlowStats::*value;
 };
 //! Every SteadyFlowStats field under its checkpoint name (a new statistic: one field, one line).
-extern const SteadyFlowStatField kSteadyFlowStatFields[9];
+extern const SteadyFlowStatField kSteadyFlowStatFields[10];
 
 //! Points in steady critical-state flow answered from their own recent response
 //! (docs/dem_work.md §6).
@@ -49,25 +50,34 @@ extern const SteadyFlowStatField kSteadyFlowStatFields[9];
 //! A point's DEM updates are grouped into windows of shear strain γ ≥ `window`. When two
 //! windows in a row have the same mean pressure p and stress ratio q/p (within
 //! `stress_change`), the same shear direction (within `turn_deg`) and no volume change
-//! (|Δε_v/Δγ| ≤ `dilatancy`), the point flows: its stress is the last window's mean (rotated
-//! with the point) and its RVE does not run. A packing at critical state has forgotten its
-//! path, so the RVE is not made to catch up with the shear it missed: its next DEM update runs
-//! that update's own increment, plus the rotation and the volume change the point had since
-//! the last one (the isochoric stretch in between is dropped). Every `check_every` flowing
-//! updates that DEM update is a check of the prediction; an error above `max_error`, a turn of
-//! the shear direction beyond `turn_deg` or a volume change beyond `volume_change` since the
-//! flow began end the flow (the point runs DEM every update again and measures new windows).
+//! (|Δε_v/Δγ| ≤ `dilatancy`), the point flows: its stress is the last window's mean, changed
+//! by the packing's bulk modulus (scaled by √(p/p0)) times the volume change since, and its
+//! RVE does not run. At critical state the stress follows the stretching, not the material
+//! spin (in a steady simple shear σ is constant while the material rotates), so the flow's
+//! stress and its RVE both keep their orientation in space; a turn of the stretching ends the
+//! flow. A packing at critical state has forgotten its path, so the RVE is not made to catch
+//! up with the shear it missed: its next DEM update runs that update's own increment and the
+//! volume change the point had since the last one. Every `check_every` flowing updates that
+//! DEM update is a check of the prediction; an error above `max_error`, a turn of the
+//! increment's shear direction beyond `turn_deg` or a volume change beyond `volume_change`
+//! since the flow began end the flow (the point runs DEM every update again and measures new
+//! windows). The checks' own shear makes windows too, on the RVE's slowed path: one that
+//! differs from the window before by more than `stress_change` ends the flow (a packing that
+//! was not at critical state after all drifts, at 1/`check_every` of its pace).
 //!
 //! All state is replicated on every rank and updated from replicated data only, like
 //! QuietPoints: every rank takes the same decisions, whatever the rank count.
 class SteadyFlow {
  public:
   //! Per-point values in a checkpoint row (the Row members and the tensors, see save_row).
-  static constexpr int kValues = 68;
+  static constexpr int kValues = 70;
 
   //! `points` points of a `dimension`-D packing; `stress_floor` [Pa]: the smallest pressure a
   //! flow is recognised at, and what keeps relative errors near zero stress finite.
   void start(std::size_t points, const SteadyFlowSpec& spec, int dimension, double stress_floor);
+  //! `point` before any update: its packing's mean pressure and bulk modulus (the packing's
+  //! probe, PackingModuli), the flow's volumetric stiffness at that pressure.
+  void set_packing(std::size_t point, double pressure, double bulk_modulus);
   bool enabled() const { return spec_.enabled; }
   bool flowing(std::size_t point) const { return row(point).flowing != 0.0; }
 
@@ -83,8 +93,8 @@ class SteadyFlow {
   //! check, any other point's window.
   void after_dem(std::size_t point, const Mat3& increment, const Mat3& stress);
 
-  //! The increment an RVE runs after missing `pending`, with `dF` now: dF · R · J^(1/d) in the
-  //! plane (R, J: rotation and volume ratio of `pending`; testable alone).
+  //! The increment an RVE runs after missing `pending`, with `dF` now: dF · J^(1/d) in the
+  //! plane (J: the volume ratio of `pending`; testable alone).
   Mat3 reduced_increment(const Mat3& dF, const Mat3& pending) const;
 
   const SteadyFlowStats& stats() const { return stats_; }
@@ -111,11 +121,16 @@ class SteadyFlow {
     double samples = 0.0;                          //!< stresses averaged into the anchor
     double typical_shear = 0.0;                    //!< the flow's γ per update when it began
     double checking = 0.0;  //!< 1 while a flowing point's DEM update (check or end) runs
+    double packing_pressure = 0.0, packing_bulk = 0.0;  //!< set_packing()
   };
   Row& row(std::size_t point) { return rows_[point]; }
   const Row& row(std::size_t point) const { return rows_[point]; }
   void add_to_window(std::size_t point, const Mat3& increment, const Mat3& stress);
   void close_window(std::size_t point);
+  //! Whether the window just measured, `w`, is as steady as a flow needs.
+  bool steady(std::size_t point, const Window& w, const Mat3& shear) const;
+  //! The flow's volumetric stiffness at its present pressure.
+  double flow_bulk(std::size_t point) const;
   void check(std::size_t point, const Mat3& stress);
   void end_flow(std::size_t point);
 
@@ -124,8 +139,8 @@ class SteadyFlow {
   double stress_floor_ = 1.0;
   std::vector<Mat3> pending_;     //!< increment since the last DEM update of a flowing point
   std::vector<Mat3> catch_up_;    //!< what a flowing point's RVE runs when it runs
-  std::vector<Mat3> anchor_;      //!< the flow's stress (the window mean, rotated)
-  std::vector<Mat3> direction_;   //!< the flow's unit shear direction (rotated)
+  std::vector<Mat3> anchor_;      //!< the flow's stress (the window mean, then checks)
+  std::vector<Mat3> direction_;   //!< the flow's unit shear direction
   std::vector<Mat3> stress_sum_;  //!< Σ σ Δγ of the window being measured
   std::vector<Mat3> shear_sum_;   //!< Σ Δe (deviatoric strain) of that window
   std::vector<Mat3> last_shear_;  //!< the previous window's unit shear direction
