@@ -29,8 +29,8 @@ namespace {
 //! A check's stress joins the anchor's running mean, over at most this many samples (the
 //! window mean counts as one).
 constexpr double kMostSamples = 10.0;
-//! An increment's shear below this fraction of the flow's γ per update when it began is too
-//! small to tell its direction.
+//! A path's shear below this fraction of the flow's γ per update when it began is too small
+//! to tell its direction.
 constexpr double kMeasurableShear = 0.25;
 constexpr int kTensorValues = 6 * 9;
 
@@ -111,9 +111,12 @@ bool SteadyFlow::accumulate(std::size_t point, const Mat3& dF) {
   r.flow_volumetric += e.volumetric;
   anchor_[point] += flow_bulk(point) * e.volumetric * identity_d(d);
   const double shear = shear_of(e.deviatoric);
-  const bool measurable = shear >= kMeasurableShear * r.typical_shear;
+  // The path's direction is that of the shear since the last DEM update (up to check_every
+  // increments): one increment of a noisy velocity field does not turn a flow.
+  const Mat3 path = strain_parts(pending_[point], d).deviatoric;
+  const bool measurable = shear_of(path) >= kMeasurableShear * r.typical_shear;
   r.checking = 1.0;
-  if (measurable && cosine(e.deviatoric, direction_[point]) < std::cos(spec_.turn_deg * kDegree)) {
+  if (measurable && cosine(path, direction_[point]) < std::cos(spec_.turn_deg * kDegree)) {
     stats_.turns += 1.0;
     end_flow(point);
     return true;
