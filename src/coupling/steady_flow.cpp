@@ -1,6 +1,7 @@
 #include "coupling/steady_flow.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 
@@ -164,10 +165,12 @@ void SteadyFlow::check(std::size_t point, const Mat3& stress) {
   stats_.checks += 1.0;
   stats_.error_sum += error;
   stats_.max_error = std::max(stats_.max_error, error);
-  if (r.flowing == 0.0)
-    return;
-  if (error > spec_.max_error) {
+  const bool missed = !(error <= spec_.max_error);  // a NaN stress misses too
+  if (missed)
     stats_.exceeded += 1.0;
+  if (r.flowing == 0.0)
+    return;  // the update that ended a flow by a turn or a volume change
+  if (missed) {
     end_flow(point);
     return;
   }
@@ -196,13 +199,19 @@ bool SteadyFlow::steady(std::size_t point, const Window& w, const Mat3& shear) c
   const Row& r = row(point);
   const double pressure = w.pressure / w.shear;
   const double ratio = w.ratio / w.shear;
+  const auto same = [&](double value, double reference) {
+    return std::abs(value - reference) <= spec_.stress_change * value;
+  };
   // A flowing point's windows are made of its checks, whose increments carry the volume
-  // change of the whole flow: its volume is held by volume_change instead.
-  const bool constant_volume =
-      r.flowing != 0.0 || std::abs(w.volumetric) <= spec_.dilatancy * w.shear;
-  return r.has_last != 0.0 && pressure > stress_floor_ &&
-         std::abs(pressure - r.last_pressure) <= spec_.stress_change * pressure &&
-         std::abs(ratio - r.last_ratio) <= spec_.stress_change * ratio && constant_volume &&
+  // change of the whole flow: its volume is held by volume_change instead. They are held to
+  // the flow's first window as well as to the one before, so that no slow drift goes on.
+  const bool flowing = r.flowing != 0.0;
+  const bool constant_volume = flowing || (std::abs(w.volumetric) <= spec_.dilatancy * w.shear &&
+                                           r.last_dilatancy <= spec_.dilatancy);
+  const bool since_begun =
+      !flowing || (same(pressure, r.flow_pressure) && same(ratio, r.flow_ratio));
+  return r.has_last != 0.0 && pressure > stress_floor_ && same(pressure, r.last_pressure) &&
+         same(ratio, r.last_ratio) && constant_volume && since_begun &&
          cosine(shear, last_shear_[point]) >= std::cos(spec_.turn_deg * kDegree);
 }
 
@@ -223,6 +232,8 @@ void SteadyFlow::close_window(std::size_t point) {
       r.flow_updates = 0.0;
       r.flow_volumetric = 0.0;
       r.typical_shear = w.shear / w.updates;
+      r.flow_pressure = w.pressure / w.shear;
+      r.flow_ratio = w.ratio / w.shear;
       stats_.entries += 1.0;
     }
     direction_[point] = shear;
@@ -231,10 +242,19 @@ void SteadyFlow::close_window(std::size_t point) {
   }
   r.last_pressure = w.pressure / w.shear;
   r.last_ratio = w.ratio / w.shear;
+  r.last_dilatancy = std::abs(w.volumetric) / w.shear;
   r.has_last = 1.0;
   last_shear_[point] = shear;
   r.window = Window{};
   stress_sum_[point] = shear_sum_[point] = Mat3::Zero();
+}
+
+std::array<double*, SteadyFlow::kRowValues> SteadyFlow::values_of(Row& r) {
+  return {&r.window.shear,   &r.window.volumetric, &r.window.pressure, &r.window.ratio,
+          &r.window.updates, &r.last_pressure,     &r.last_ratio,      &r.last_dilatancy,
+          &r.has_last,       &r.flowing,           &r.flow_updates,    &r.flow_volumetric,
+          &r.samples,        &r.typical_shear,     &r.checking,        &r.packing_pressure,
+          &r.packing_bulk,   &r.flow_pressure,     &r.flow_ratio};
 }
 
 void SteadyFlow::save_row(std::size_t point, double* v) const {
@@ -242,12 +262,9 @@ void SteadyFlow::save_row(std::size_t point, double* v) const {
                            &stress_sum_[point], &shear_sum_[point], &last_shear_[point]};
   for (const Mat3* t : tensors)
     v = std::copy(t->data(), t->data() + 9, v);
-  const Row& r = row(point);
-  const double rest[] = {r.window.shear,   r.window.volumetric, r.window.pressure, r.window.ratio,
-                         r.window.updates, r.last_pressure,     r.last_ratio,      r.has_last,
-                         r.flowing,        r.flow_updates,      r.flow_volumetric, r.samples,
-                         r.typical_shear,  r.checking};
-  std::copy(std::begin(rest), std::end(rest), v);
+  Row copy = row(point);
+  for (const double* x : values_of(copy))
+    *v++ = *x;
 }
 
 void SteadyFlow::restore_row(std::size_t point, const double* v) {
@@ -257,15 +274,11 @@ void SteadyFlow::restore_row(std::size_t point, const double* v) {
     std::copy(v, v + 9, t->data());
     v += 9;
   }
-  Row& r = row(point);
-  double* rest[] = {&r.window.shear,   &r.window.volumetric, &r.window.pressure, &r.window.ratio,
-                    &r.window.updates, &r.last_pressure,     &r.last_ratio,      &r.has_last,
-                    &r.flowing,        &r.flow_updates,      &r.flow_volumetric, &r.samples,
-                    &r.typical_shear,  &r.checking};
-  for (double* x : rest)
+  for (double* x : values_of(row(point)))
     *x = *v++;
 }
 
-static_assert(SteadyFlow::kValues == kTensorValues + 16, "a SteadyFlow row: 6 tensors, 16 values");
+static_assert(SteadyFlow::kValues == kTensorValues + SteadyFlow::kRowValues,
+              "a SteadyFlow row: 6 tensors and the Row values");
 
 }  // namespace mpm_lig::coupling

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -17,7 +18,7 @@ struct SteadyFlowSpec {
   double volume_change = 2e-3;  //!< |ε_v| since the flow began that ends it
   double turn_deg = 30.0;       //!< angle between deviatoric strains that ends a flow
   double max_error = 0.15;      //!< check error (relative to |σ|) that ends a flow
-  int check_every = 10;         //!< a flowing point runs one DEM update (a check) this often
+  int check_every = 10;         //!< predicted updates of a flowing point before a check
 };
 
 SteadyFlowSpec parse_steady_flow(const CaseNode& node);
@@ -57,20 +58,23 @@ extern const SteadyFlowStatField kSteadyFlowStatFields[10];
 //! stress and its RVE both keep their orientation in space; a turn of the stretching ends the
 //! flow. A packing at critical state has forgotten its path, so the RVE is not made to catch
 //! up with the shear it missed: its next DEM update runs that update's own increment and the
-//! volume change the point had since the last one. Every `check_every` flowing updates that
+//! volume change the point had since the last one. After `check_every` predicted updates that
 //! DEM update is a check of the prediction; an error above `max_error`, a turn of the
 //! increment's shear direction beyond `turn_deg` or a volume change beyond `volume_change`
 //! since the flow began end the flow (the point runs DEM every update again and measures new
 //! windows). The checks' own shear makes windows too, on the RVE's slowed path: one that
 //! differs from the window before by more than `stress_change` ends the flow (a packing that
-//! was not at critical state after all drifts, at 1/`check_every` of its pace).
+//! was not at critical state after all drifts, at 1/(`check_every` + 1) of its pace; windows
+//! are held to the window before and to the flow's first).
 //!
 //! All state is replicated on every rank and updated from replicated data only, like
 //! QuietPoints: every rank takes the same decisions, whatever the rank count.
 class SteadyFlow {
  public:
   //! Per-point values in a checkpoint row (the Row members and the tensors, see save_row).
-  static constexpr int kValues = 70;
+  static constexpr int kValues = 73;
+  //! The Row's values in a checkpoint row, after the 6 tensors.
+  static constexpr std::size_t kRowValues = 19;
 
   //! `points` points of a `dimension`-D packing; `stress_floor` [Pa]: the smallest pressure a
   //! flow is recognised at, and what keeps relative errors near zero stress finite.
@@ -114,6 +118,8 @@ class SteadyFlow {
   struct Row {
     Window window;
     double last_pressure = 0.0, last_ratio = 0.0;  //!< the previous window's means
+    double last_dilatancy = 0.0;                   //!< and its |ε_v| / γ
+    double flow_pressure = 0.0, flow_ratio = 0.0;  //!< the means when the flow began
     double has_last = 0.0;                         //!< 1 once a window was closed
     double flowing = 0.0;                          //!< 1 while the point flows
     double flow_updates = 0.0;                     //!< predicted updates since its last DEM
@@ -123,6 +129,8 @@ class SteadyFlow {
     double checking = 0.0;  //!< 1 while a flowing point's DEM update (check or end) runs
     double packing_pressure = 0.0, packing_bulk = 0.0;  //!< set_packing()
   };
+  //! Every value of `r`, in the order of a checkpoint row (one list for saving and restoring).
+  static std::array<double*, kRowValues> values_of(Row& r);
   Row& row(std::size_t point) { return rows_[point]; }
   const Row& row(std::size_t point) const { return rows_[point]; }
   void add_to_window(std::size_t point, const Mat3& increment, const Mat3& stress);

@@ -1,8 +1,7 @@
 #!/usr/bin/python3
 """Steady flow did answer flowing points and checked them: summary.json's steady_flow block of
 RUN has flows begun, predicted updates, checks and finite errors; the DEM work of RUN is below
-that of OFF, the same case without steady flow, by at least the predicted updates' share of the
-sub-steps; every OTHER run reports the same block (decisions independent of the rank count).
+that of OFF, the same case without steady flow; every OTHER run reports the same block (decisions independent of the rank count).
 
 usage: check_steady_flow.py RUN OFF [OTHER...]
 """

@@ -42,6 +42,8 @@ PointCheckpoint sample(double seed) {
     p.work[k] = seed * 1e3 + k;
   for (int k = 0; k < QuietPoints::kValues; ++k)
     p.quiet[k] = seed * 1e4 - k;
+  for (int k = 0; k < SteadyFlow::kValues; ++k)
+    p.flow[k] = seed * 1e5 + 3 * k;
   return p;
 }
 
@@ -77,6 +79,8 @@ TEST(PointCheckpoint, NamedArraysRoundTripEveryField) {
       EXPECT_EQ(got.work[k], want.work[k]);
     for (int k = 0; k < QuietPoints::kValues; ++k)
       EXPECT_EQ(got.quiet[k], want.quiet[k]);
+    for (int k = 0; k < SteadyFlow::kValues; ++k)
+      EXPECT_EQ(got.flow[k], want.flow[k]);
   }
 }
 

@@ -96,6 +96,12 @@ TEST(SteadyFlow, AHardeningOrDilatingPointDoesNotFlow) {
   SteadyFlow dilating = started();
   run_dem(dilating, 60, noisy, 0.1 * kStep);  // dε_v/dγ = 0.1 > dilatancy 0.05
   EXPECT_FALSE(dilating.flowing(0));
+  SteadyFlow dilated_first = started();  // the first window dilates, the second does not
+  run_dem(dilated_first, 10, noisy, 0.1 * kStep);
+  run_dem(dilated_first, 10, noisy);
+  EXPECT_FALSE(dilated_first.flowing(0));
+  run_dem(dilated_first, 10, noisy);  // now both windows hold their volume
+  EXPECT_TRUE(dilated_first.flowing(0));
   SteadyFlow unloaded = started();  // p below the stress floor: no flow recognised
   run_dem(unloaded, 60, [](int) { return critical_stress(1e-3); });
   EXPECT_FALSE(unloaded.flowing(0));
@@ -163,6 +169,24 @@ TEST(SteadyFlow, AWindowOfChecksThatDriftsEndsTheFlow) {
   EXPECT_EQ(f.stats().exceeded, 0.0);
 }
 
+TEST(SteadyFlow, ASlowDriftEndsTheFlowOnceItAddsUpSinceTheFlowBegan) {
+  SteadyFlow f = started();
+  run_dem(f, 20, noisy);
+  ASSERT_TRUE(f.flowing(0));
+  // Each window of checks 6 % above the one before (below stress_change 10 %): the second
+  // window is 12 % above the flow's first and ends it.
+  int windows = 0, checks = 0;
+  for (int update = 0; update < 4 * 6 * 10 && f.flowing(0); ++update) {
+    if (f.accumulate(0, shear_step(kStep))) {
+      f.after_dem(0, f.catch_up(0), critical_stress(std::pow(1.06, 1 + checks / 10)));
+      windows = ++checks / 10;
+    }
+  }
+  EXPECT_FALSE(f.flowing(0));
+  EXPECT_EQ(windows, 2);
+  EXPECT_EQ(f.stats().drifts, 1.0);
+}
+
 TEST(SteadyFlow, ATurnAVolumeChangeOrAFailedCheckEndsTheFlow) {
   SteadyFlow turned = started();
   run_dem(turned, 20, noisy);
@@ -173,6 +197,15 @@ TEST(SteadyFlow, ATurnAVolumeChangeOrAFailedCheckEndsTheFlow) {
   SteadyFlow paused = started();
   run_dem(paused, 20, noisy);
   EXPECT_FALSE(paused.accumulate(0, shear_step(-0.1 * kStep)));
+
+  // One increment off the path after several along it does not turn the path since the last
+  // DEM update (their sum): the flow goes on.
+  SteadyFlow steady = started();
+  run_dem(steady, 20, noisy);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_FALSE(steady.accumulate(0, shear_step(kStep)));
+  EXPECT_FALSE(steady.accumulate(0, shear_step(-kStep)));
+  EXPECT_EQ(steady.stats().turns, 0.0);
 
   SteadyFlow compressed = started();
   run_dem(compressed, 20, noisy);
@@ -197,28 +230,39 @@ TEST(SteadyFlow, ATurnAVolumeChangeOrAFailedCheckEndsTheFlow) {
 }
 
 TEST(SteadyFlow, ACheckpointRowContinuesTheSameWay) {
+  // Saved mid-window (13 of the 20 updates that begin a flow), then run past the window's
+  // close, the flow's begin, its checks and a window of checks.
   SteadyFlow f = started();
-  run_dem(f, 20, noisy);
-  f.accumulate(0, shear_step(kStep));
-  f.accumulate(0, shear_step(kStep));
+  run_dem(f, 13, noisy);
   std::vector<double> row(SteadyFlow::kValues);
   f.save_row(0, row.data());
   SteadyFlow g = started();
   g.restore_row(0, row.data());
   g.restore_stats(f.stats());
-  for (int k = 0; k < 8; ++k) {
-    const Mat3 dF = shear_step(kStep * (1.0 + 0.1 * k));
+  for (int k = 13; k < 20; ++k) {
+    f.after_dem(0, shear_step(kStep), noisy(k));
+    g.after_dem(0, shear_step(kStep), noisy(k));
+  }
+  ASSERT_TRUE(f.flowing(0));
+  ASSERT_TRUE(g.flowing(0));
+  for (int k = 0; k < 80; ++k) {
+    const Mat3 dF = shear_step(kStep * (1.0 + 0.01 * (k % 3)));
     const bool runs = f.accumulate(0, dF);
     ASSERT_EQ(runs, g.accumulate(0, dF)) << k;
     if (runs) {
       EXPECT_EQ(f.catch_up(0), g.catch_up(0));
-      f.after_dem(0, f.catch_up(0), critical_stress(1.01));
-      g.after_dem(0, g.catch_up(0), critical_stress(1.01));
+      f.after_dem(0, f.catch_up(0), critical_stress(1.0 + 0.003 * (k % 5)));
+      g.after_dem(0, g.catch_up(0), critical_stress(1.0 + 0.003 * (k % 5)));
     }
-    EXPECT_EQ(f.predicted(0), g.predicted(0));
+    ASSERT_EQ(f.predicted(0), g.predicted(0)) << k;
   }
   EXPECT_EQ(f.stats().checks, g.stats().checks);
+  EXPECT_GE(f.stats().checks, 10.0);  // a whole window of checks ran after the restore
   EXPECT_EQ(f.stats().skipped_shear, g.stats().skipped_shear);
+  std::vector<double> again(SteadyFlow::kValues), other(SteadyFlow::kValues);
+  f.save_row(0, again.data());
+  g.save_row(0, other.data());
+  EXPECT_EQ(again, other);
 }
 
 }  // namespace
