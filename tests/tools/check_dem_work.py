@@ -1,7 +1,7 @@
 """Checks of the per-point DEM work (results.h5 dem_particle_steps_m<ID>, summary.json
 dem_work_shares) and of tools/plot_dem_work.py.
 
-usage: check_dem_work.py CASE WORK_DIR [MPM_LIG]   (CASE: real | bad | below)
+usage: check_dem_work.py CASE WORK_DIR [MPM_LIG]   (CASE: real | bad | below | stages)
 
 real: the quick-start block with 50-disc RVEs for 10 steps at exactly 10 sub-steps: every
 point's field is 40 x 10 x 10 particle-steps and the fields sum to the summary's total; with the
@@ -10,6 +10,9 @@ the block, compressed at 0.3 m/s and confined at the preparation pressure, does 
 mean stress nor quiet. (The classes' closed forms: tests/coupling/test_dem_work.cpp.)
 below: --below-strain on three synthetic points whose strain passes 1e-4 at known output steps
 (one of them by shear alone): the work done before is 50 % of the total, all of it below 1e-3.
+stages: --stages on a synthetic footing run whose work grows linearly with its settlement: the
+work between two settlements is their share of it; a stage past the run's end, or --stages
+without --case, is refused (exit 2).
 """
 import json
 import math
@@ -116,7 +119,34 @@ def below(work):
     expect("|strain| < 0.001: 100.0 % of the work" in r.stdout, r.stdout)
 
 
+def stages(work):
+    from synthetic import write_fields
+    shutil.rmtree(work, ignore_errors=True)
+    positions = np.zeros((2, 3))
+    write_fields(work, [(k, 0.01 * k, {"positions": positions,
+                                       "dem_particle_steps_m1": np.array([2.0, 4.0]) * k})
+                        for k in (0, 10, 20)])
+    with open(os.path.join(work, "history.csv"), "w") as f:  # s/B = step / 100 (B = 0.2 m)
+        f.write("step,time,settlement\n" + "".join(f"{k},{0.01 * k},{0.002 * k}\n"
+                                                   for k in range(21)))
+    case = os.path.join(work, "case.json")
+    with open(case, "w") as f:
+        json.dump({"rigid_bodies": [{"type": "footing", "center": [0.0], "width": [0.2],
+                                     "base": 1.0}]}, f)
+    tool = [sys.executable, TOOL, work, "-o", os.path.join(work, "map.png")]
+    r = subprocess.run(tool + ["--stages", "0", "0.05", "0.2", "--case", case],
+                       capture_output=True, text=True)
+    expect(r.returncode == 0, f"plot_dem_work exit {r.returncode}: {r.stderr}")
+    expect("s/B 0 to 0.05: 30 particle-steps (25.0 % of the work)" in r.stdout, r.stdout)
+    expect("s/B 0.05 to 0.2: 90 particle-steps (75.0 % of the work)" in r.stdout, r.stdout)
+    r = subprocess.run(tool + ["--stages", "0", "0.3", "--case", case], capture_output=True,
+                       text=True)
+    expect(r.returncode == 2 and "before 0.3" in r.stderr, f"past the end: {r.stderr}")
+    r = subprocess.run(tool + ["--stages", "0", "0.1"], capture_output=True, text=True)
+    expect(r.returncode == 2 and "--case" in r.stderr, f"no case: {r.stderr}")
+
+
 if __name__ == "__main__":
     case, work = sys.argv[1], os.path.join(sys.argv[2], sys.argv[1])
-    {"real": real, "bad": bad, "below": below}[case](work, *sys.argv[3:])
+    {"real": real, "bad": bad, "below": below, "stages": stages}[case](work, *sys.argv[3:])
     print(f"{case}: ok")

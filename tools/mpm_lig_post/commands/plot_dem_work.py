@@ -2,7 +2,7 @@
 points (the cost map), with the breakdown of summary.json.
 
 usage: plot_dem_work.py OUTPUT_DIR [-o picture.png] [--step N] [--initial]
-                        [--below-strain E [E ...]]
+                        [--below-strain E [E ...]] [--stages S [S ...] --case CASE.json]
 
 Reads the dem_particle_steps_m<ID> fields of OUTPUT_DIR/results.h5 at the last output step (or
 --step N) and the points' positions there (--initial: at the first output step, the undeformed
@@ -14,6 +14,8 @@ below E (at the output steps' resolution: up to the last output step before they
 an upper bound of what a continuum start (materials[].start_as_continuum) with strain
 threshold E could have saved on this run (a point that switches later redoes that strain in
 its catch-up: only points that never pass E save their work).
+--stages S...: a footing run's work between the settlements s/B = S (CASE.json gives the
+footing's width; each output step's work interpolated to s/B by history.csv's settlement).
 """
 from mpm_lig_post.requirements import require
 
@@ -23,10 +25,10 @@ import os  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from mpm_lig_post import cli, figures  # noqa: E402
+from mpm_lig_post import cli, figures, footing  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
 from mpm_lig_post.fields import FieldFile  # noqa: E402
-from mpm_lig_post.tables import read_json  # noqa: E402
+from mpm_lig_post.tables import read_history, read_json  # noqa: E402
 
 PREFIX = "dem_particle_steps_m"
 
@@ -64,6 +66,23 @@ def work_below_strain(fields, thresholds, last_step):
     return out
 
 
+def work_by_stage(fields, directory, case_file, edges):
+    """[(s/B from, s/B to, particle-steps)] of a footing run between the settlements `edges`."""
+    case = read_json(case_file)
+    width = footing.width(case, case_file)
+    path = os.path.join(directory, "history.csv")
+    history = read_history(path)
+    steps = np.asarray(history["step"], float)
+    s_over_b = np.asarray(history["settlement"], float) / width
+    out_steps = np.asarray(fields.steps, float)
+    totals = np.array([point_work(fields, s)[0].sum() for s in fields.steps])
+    at = np.interp(out_steps, steps, s_over_b)
+    if edges[-1] > at[-1] + 1e-9:
+        raise InputError(f"{directory}: the run ends at s/B = {at[-1]:.3g}, before {edges[-1]:g}")
+    work = np.interp(edges, at, totals)
+    return [(edges[i], edges[i + 1], work[i + 1] - work[i]) for i in range(len(edges) - 1)]
+
+
 def top_shares(work, fractions=(0.01, 0.05, 0.10, 0.25)):
     """[(fraction of points, share of the work they took)] for the most expensive points."""
     order = np.sort(work)[::-1]
@@ -82,14 +101,21 @@ def main():
                    help="draw the points where they started (first output step)")
     p.add_argument("--below-strain", type=cli.positive, nargs="+", default=[], metavar="E",
                    help="print the work done while each point's |strain| was below E")
+    p.add_argument("--stages", type=cli.non_negative, nargs="+", default=[], metavar="S",
+                   help="a footing's work between these settlements s/B (needs --case)")
+    p.add_argument("--case", help="the run's case file (the footing's width, for --stages)")
     args = p.parse_args()
     directory = cli.output_dir(args)
+    if args.stages and (not args.case or len(args.stages) < 2 or
+                        any(b <= a for a, b in zip(args.stages, args.stages[1:]))):
+        raise InputError("--stages: give two or more increasing settlements and --case")
     fields = FieldFile(os.path.join(directory, "results.h5"))
     try:
         step = args.step if args.step is not None else fields.steps[-1]
         work, time = point_work(fields, step)
         where = fields.step(fields.steps[0] if args.initial else step)["positions"]
         below = work_below_strain(fields, args.below_strain, step) if args.below_strain else []
+        stages = work_by_stage(fields, directory, args.case, args.stages) if args.stages else []
     finally:
         fields.close()
     total = work.sum()
@@ -102,6 +128,9 @@ def main():
     if shares:
         for key, value in shares.items():
             print(f"  {key.replace('_', ' ')}: {100 * value:.1f} % of the work")
+    for lo, hi, steps_done in stages:
+        print(f"  s/B {lo:g} to {hi:g}: {steps_done:.3g} particle-steps "
+              f"({100 * steps_done / total:.1f} % of the work)")
     for threshold, share in below:
         print(f"  done while the point's |strain| < {threshold:g}: {100 * share:.1f} % of the work "
               "(bounds what a continuum start with that threshold saves)")
