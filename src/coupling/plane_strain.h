@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+
 #include "core/tensor.h"
 
 //! Small-strain pieces of a deformation increment in the first `d` axes (the plane of a 2D
@@ -39,6 +41,12 @@ inline StrainParts strain_parts(const Mat3& increment, int d) {
   const Mat3 strain = in_plane(0.5 * (inc + inc.transpose()), d);
   const double volumetric = trace_d(strain, d);
   return {strain, volumetric, strain - (volumetric / d) * identity_d(d)};
+}
+
+//! |prediction - stress| / |stress|, the stress's size floored at `floor` [Pa] so that the
+//! error of a prediction near zero stress stays finite.
+inline double relative_error(const Mat3& prediction, const Mat3& stress, double floor) {
+  return (prediction - stress).norm() / std::max(stress.norm(), floor);
 }
 
 //! The first-order rotation of `stress` by the spin of `increment`.

@@ -144,7 +144,7 @@ bool QuietPoints::accumulate(std::size_t point, const Mat3& dF) {
 }
 
 double QuietPoints::relative_error(std::size_t point, const Mat3& stress) const {
-  return (predicted_[point] - stress).norm() / std::max(stress.norm(), stress_floor_);
+  return plane::relative_error(predicted_[point], stress, stress_floor_);
 }
 
 void QuietPoints::book_switch(std::size_t point, const Mat3& stress) {

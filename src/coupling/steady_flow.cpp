@@ -140,7 +140,11 @@ void SteadyFlow::end_flow(std::size_t point) {
   Row& r = row(point);
   r.flowing = 0.0;
   r.has_last = 0.0;
-  r.window = Window{};
+  start_window(point);
+}
+
+void SteadyFlow::start_window(std::size_t point) {
+  row(point).window = Window{};
   stress_sum_[point] = shear_sum_[point] = Mat3::Zero();
 }
 
@@ -161,7 +165,7 @@ void SteadyFlow::after_dem(std::size_t point, const Mat3& increment, const Mat3&
 
 void SteadyFlow::check(std::size_t point, const Mat3& stress) {
   Row& r = row(point);
-  const double error = (anchor_[point] - stress).norm() / std::max(stress.norm(), stress_floor_);
+  const double error = relative_error(anchor_[point], stress, stress_floor_);
   stats_.checks += 1.0;
   stats_.error_sum += error;
   stats_.max_error = std::max(stats_.max_error, error);
@@ -245,8 +249,7 @@ void SteadyFlow::close_window(std::size_t point) {
   r.last_dilatancy = std::abs(w.volumetric) / w.shear;
   r.has_last = 1.0;
   last_shear_[point] = shear;
-  r.window = Window{};
-  stress_sum_[point] = shear_sum_[point] = Mat3::Zero();
+  start_window(point);
 }
 
 std::array<double*, SteadyFlow::kRowValues> SteadyFlow::values_of(Row& r) {

@@ -135,6 +135,8 @@ class SteadyFlow {
   const Row& row(std::size_t point) const { return rows_[point]; }
   void add_to_window(std::size_t point, const Mat3& increment, const Mat3& stress);
   void close_window(std::size_t point);
+  //! An empty window of `point` (its sums cleared).
+  void start_window(std::size_t point);
   //! Whether the window just measured, `w`, is as steady as a flow needs.
   bool steady(std::size_t point, const Window& w, const Mat3& shear) const;
   //! The flow's volumetric stiffness at its present pressure.
