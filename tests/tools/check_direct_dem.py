@@ -9,6 +9,9 @@ usage: check_direct_dem.py bad WORK      bad input: exit 2, the key named, nothi
        check_direct_dem.py start_from_scale WORK
                                          --start-from a block of --scale 2 without --scale: the
                                          block's B and speed
+       check_direct_dem.py settle_damping WORK REFERENCE
+                                         the settling with kinetic damping (REFERENCE, run's
+                                         block) against none, and --resettle
        check_direct_dem.py resume WORK REFERENCE
                                          the same run stopped in its preparation (at a
                                          checkpoint) and in its loading (SIGTERM), resumed: the
@@ -93,6 +96,8 @@ def bad(work):
         ("no such engine", TINY, ["--liggghts", "/nonexistent/liggghts"], "--liggghts"),
         ("settlement past the base", TINY, ["--settlement", "10"], "--settlement"),
         ("resume of nothing", TINY, ["--resume"], "no such folder"),
+        ("resettle without a block", TINY, ["--resettle"], "--resettle"),
+        ("no such settling", TINY, ["--settle-damping", "viscous"], "--settle-damping"),
         ("unknown option, one line", TINY, ["--sead", "3"], "unrecognized arguments"),
         ("no such probe place", TINY, ["--probes", "keel"], "--probes keel"),
         ("a probe's place not numbers", TINY, ["--probes", "a=x:1"], "--probes a=x:1"),
@@ -492,6 +497,42 @@ def start_from_scale(work):
     check(rows[0] == rows[1], "the loading starts from the block's own state (first rows equal)")
 
 
+def settle_damping(work, reference):
+    """The settling with the kinetic damping (REFERENCE, the run test's block, the default)
+    against the contacts' damping alone (the same packing, --settle-damping none): at rest in
+    fewer updates and closer to balance; and that free block settled again (--start-from
+    --resettle): quenched, balanced, and its loading starts from the new state."""
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    free, again = os.path.join(work, "free"), os.path.join(work, "again")
+    code, _, stderr = run_tool([TINY, "--output", free, "--settle-damping", "none",
+                                "--settlement", "0.004", "--snapshots"])
+    check(code == 0, f"the tiny block settled without damping: exit {code} {stderr.strip()[-200:]}")
+    if code != 0:
+        return
+    damped = json.load(open(os.path.join(reference, "settled.json")))["state"]["settled"]
+    undamped = json.load(open(os.path.join(free, "settled.json")))["state"]["settled"]
+    check(damped["damping"] == "kinetic" and damped["quenches"] >= 1 and
+          undamped["damping"] == "none" and undamped["quenches"] == 0,
+          f"the default settling quenches ({damped['quenches']}), none does not")
+    check(damped["updates"] < undamped["updates"] and
+          abs(damped["balance"]) <= abs(undamped["balance"]),
+          f"kinetic damping: at rest after {damped['updates']} updates (none: "
+          f"{undamped['updates']}), base / applied - 1 = {damped['balance']:+.4f} (none: "
+          f"{undamped['balance']:+.4f})")
+    code, _, stderr = run_tool([TINY, "--output", again, "--start-from", free, "--resettle",
+                                "--settlement", "0.004", "--snapshots"])
+    check(code == 0, f"--start-from it --resettle: exit {code} {stderr.strip()[-200:]}")
+    if code != 0:
+        return
+    resettled = json.load(open(os.path.join(again, "settled.json")))["state"]["settled"]
+    check(resettled["damping"] == "kinetic" and abs(resettled["balance"]) <= 0.01,
+          f"resettled with kinetic damping: {resettled['quenches']} quenches, base / applied "
+          f"- 1 = {resettled['balance']:+.4f}")
+    rows = [open(os.path.join(d, "history.csv")).read().splitlines()[1] for d in (free, again)]
+    check(rows[0] != rows[1], "the resettled block's loading starts from its new state")
+
+
 def main():
     mode = sys.argv[1]
     if mode == "bad":
@@ -504,6 +545,8 @@ def main():
         resume(sys.argv[2], sys.argv[3])
     elif mode == "start_from_scale":
         start_from_scale(sys.argv[2])
+    elif mode == "settle_damping":
+        settle_damping(sys.argv[2], sys.argv[3])
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)

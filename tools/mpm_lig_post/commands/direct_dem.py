@@ -4,8 +4,9 @@ problem run by the native `liggghts` executable, grain by grain.
 usage: direct_dem.py CASE.json --output DIR [--scale S] [--tiles T] [--seed N]
                      [--settlement S_OVER_B] [--speed-factor F] [--np N] [--snapshots S1 S2 ...]
                      [--fields-every DS] [--surcharge-every STEPS] [--checkpoint-steps STEPS]
-                     [--void-ratio-tolerance DE] [--stop-after-minutes M] [--liggghts PATH]
-                     [--resume | --start-from RUN_DIR]
+                     [--void-ratio-tolerance DE] [--settle-damping kinetic|none]
+                     [--stop-after-minutes M] [--liggghts PATH]
+                     [--resume | --start-from RUN_DIR [--resettle]]
 
 CASE.json is a 2D footing case (analysis.type mpm, rigid_bodies[0] a footing at x = 0 on a
 half model, one dem_rve material, rollers on x- and x+, fixed y-, a vertical traction: the
@@ -25,6 +26,9 @@ surcharge q_s). The direct DEM:
   speed, the surcharge q_s as vertical forces on the top grain of each d_mean-wide column of the
   free surface beyond B/2, re-found every --surcharge-every steps (so it follows the heave);
   no gravity. Soil grains the opened planes cut are shrunk to fit and grown back under load;
+  the block then settles under q_s, the footing held, until at rest (with --settle-damping
+  kinetic, the default, the soil's velocities are zeroed at each maximum of its kinetic
+  energy: the opened block rings in its lowest vertical mode, which the contacts hardly damp);
 - the speed: strain rate v/B at the rve's substeps.inertial_number, I = (v/B) d sqrt(rho/p),
   times --speed-factor.
 Output in DIR: history.csv (settlement, footing load, q/q_s, base reaction, ...), results.h5 and
@@ -34,7 +38,8 @@ contacts as legacy VTK at --snapshots settlements, for tools/plot_force_chains.p
 force_chains.png, load.png, summary.json (grains, particle-steps, core-seconds, wall time,
 peak and plateau), checkpoint.json with its restart every --checkpoint-steps DEM steps and at
 the settled block (settled.json + settled.restart: --start-from loads it for another loading,
-e.g. at half the speed). The engine is reloaded from every checkpoint it writes, so a run that
+e.g. at half the speed; --resettle settles it again first, e.g. a block settled without
+damping). The engine is reloaded from every checkpoint it writes, so a run that
 stops and resumes (--resume) computes bit for bit what an uninterrupted one does; the checkpoint
 carries digests of its files and the options a resume must keep, and --resume refuses (exit 2,
 naming what differs) before running anything. One run at a time writes DIR.
@@ -106,6 +111,13 @@ def arguments():
     p.add_argument("--probe-window", type=cli.positive, metavar="D",
                    help="the probes' window side in grain diameters (default: the side of the "
                    "case's RVE)")
+    p.add_argument("--settle-damping", choices=("kinetic", "none"),
+                   help="the settling under q_s: kinetic (default: the soil's velocities zeroed "
+                   "at each maximum of its kinetic energy) or none (the contacts' damping only, "
+                   "as runs before this option)")
+    p.add_argument("--resettle", action="store_true",
+                   help="with --start-from: settle the loaded block again (with "
+                   "--settle-damping) before its loading")
     p.add_argument("--stop-after-minutes", type=cli.positive,
                    help="stop at the first checkpoint after this long (continue with --resume)")
     g = p.add_mutually_exclusive_group()
@@ -148,6 +160,8 @@ def main():
                              "longer loading start a new run from its settled block with "
                              "--start-from")
     else:
+        if a.resettle and not a.start_from:
+            raise InputError("--resettle: only with --start-from (a new run settles anyway)")
         if a.start_from:
             start = os.path.abspath(a.start_from)
             refuse_links(start, ["settled.json", "settled.restart", "reference.npz"])
@@ -224,6 +238,8 @@ def go(run, a, out, record):
         run.sitting_steps = run.particle_steps
         if not a.resume:  # a new loading of the settled block: its own checkpoints from here
             run.next_checkpoint = run.steps + a.checkpoint_steps
+            if a.resettle:
+                run.stage, run.settle_state = "settle", None
     if run.stage == "prepare":
         run.consolidate()
         run.open_block()
