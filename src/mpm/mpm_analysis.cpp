@@ -43,6 +43,10 @@ class MpmAnalysis final : public Analysis {
       lines.push_back(
           "analysis.end.time: the step count (1 ... 1e12), which needs the CFL time "
           "step of the prepared materials");
+    if (problem_.spec.fixed_time_step)
+      lines.push_back(
+          "analysis.time_step.fixed: against the stable time step (CFL 1), which needs the "
+          "prepared materials' wave moduli");
     for (std::size_t m = 0; m < problem_.materials.size(); ++m) {
       if (materials::has_snapshots(*problem_.materials[m]))
         lines.push_back("materials[" + std::to_string(m) +

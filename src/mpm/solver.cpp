@@ -117,11 +117,26 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
   }
   weights_.resize(particles_.size());
   increments_.resize(particles_.size());
-  dt_ = c.fixed_time_step ? c.time_step : stable_time_step(c);
+  if (c.fixed_time_step)
+    check_fixed_time_step(c);
+  dt_ = c.fixed_time_step ? c.time_step : stable_time_step(c, c.cfl);
 }
 
 template <int D>
-double Solver<D>::stable_time_step(const MpmCase& c) const {
+void Solver<D>::check_fixed_time_step(const MpmCase& c) const {
+  const double limit = stable_time_step(c, 1.0);
+  if (c.time_step <= limit)
+    return;
+  std::ostringstream text;
+  text << c.time_step << " s is above the stable time step " << limit
+       << " s (the cell over the fastest wave speed, CFL 1"
+       << (second_gradient_ ? ", the waves stiffened by the internal length's second gradient" : "")
+       << "): the explicit update would be unstable; give a smaller step or \"cfl\"";
+  throw CaseError("analysis.time_step.fixed", text.str());
+}
+
+template <int D>
+double Solver<D>::stable_time_step(const MpmCase& c, double cfl) const {
   double speed = 0.0;
   for (std::size_t k = 0; k < materials_.size(); ++k) {
     const materials::Material& m = *materials_[k];
@@ -134,7 +149,7 @@ double Solver<D>::stable_time_step(const MpmCase& c) const {
     speed =
         std::max(speed, std::sqrt((m.wave_modulus() + gradient) / (m.density() * mass_scaling_)));
   }
-  return c.cfl * grid_.min_cell() / speed;
+  return cfl * grid_.min_cell() / speed;
 }
 
 template <int D>
