@@ -1,7 +1,7 @@
 """Checks of the per-point DEM work (results.h5 dem_particle_steps_m<ID>, summary.json
 dem_work_shares) and of tools/plot_dem_work.py.
 
-usage: check_dem_work.py CASE WORK_DIR [MPM_LIG]   (CASE: real | bad | below | stages)
+usage: check_dem_work.py CASE WORK_DIR [MPM_LIG]   (CASE: real | bad | below | stages | net)
 
 real: the quick-start block with 50-disc RVEs for 10 steps at exactly 10 sub-steps: every
 point's field is 40 x 10 x 10 particle-steps and the fields sum to the summary's total; with the
@@ -13,6 +13,8 @@ below: --below-strain on three synthetic points whose strain passes 1e-4 at know
 stages: --stages on a synthetic footing run whose work grows linearly with its settlement: the
 work between two settlements is their share of it; a stage past the run's end, or --stages
 without --case, is refused (exit 2).
+net: --by-net-strain on a synthetic point that strains back and forth and one that shears on:
+their shares of the work, the seen path over the net change and the work per unit of path.
 """
 import json
 import math
@@ -146,7 +148,33 @@ def stages(work):
     expect(r.returncode == 2 and "--case" in r.stderr, f"no case: {r.stderr}")
 
 
+def net(work):
+    from synthetic import write_fields
+    shutil.rmtree(work, ignore_errors=True)
+    positions = np.zeros((2, 3))
+    # Point 0 strains back and forth (net 0.002 over a seen path of 0.006); point 1 shears on
+    # (0.1 per output step): 600 and 300 particle-steps from step 10 on, 50 each before.
+    swing, shear = (0.0, 0.0, 0.002, 0.0, 0.002), (0.0, 0.0, 0.1, 0.2, 0.3)
+    frames = []
+    for k, (a, b) in enumerate(zip(swing, shear)):
+        strain = np.zeros((2, 6))
+        strain[0, 0], strain[1, 3] = a, b / math.sqrt(2.0)
+        done = np.array([50.0, 50.0]) + (np.array([200.0, 100.0]) * (k - 1) if k else -50.0)
+        frames.append((10 * k, 0.01 * k, {"positions": positions, "strain": strain,
+                                          "dem_particle_steps_m1": done}))
+    write_fields(work, frames)
+    tool = [sys.executable, TOOL, work, "-o", os.path.join(work, "map.png")]
+    r = subprocess.run(tool + ["--by-net-strain", "10"], capture_output=True, text=True)
+    expect(r.returncode == 0, f"plot_dem_work exit {r.returncode}: {r.stderr}")
+    expect("0 to 0.01: 1 points, 66.7 % of the work, path / net 3, 1e+05 particle-steps per "
+           "unit path" in r.stdout, r.stdout)
+    expect("0.2 to inf: 1 points, 33.3 % of the work, path / net 1, 1e+03 particle-steps per "
+           "unit path" in r.stdout, r.stdout)
+    r = subprocess.run(tool + ["--by-net-strain", "40"], capture_output=True, text=True)
+    expect(r.returncode == 2 and "--by-net-strain 40" in r.stderr, f"one step: {r.stderr}")
+
+
 if __name__ == "__main__":
     case, work = sys.argv[1], os.path.join(sys.argv[2], sys.argv[1])
-    {"real": real, "bad": bad, "below": below, "stages": stages}[case](work, *sys.argv[3:])
+    {"real": real, "bad": bad, "below": below, "stages": stages, "net": net}[case](work, *sys.argv[3:])
     print(f"{case}: ok")

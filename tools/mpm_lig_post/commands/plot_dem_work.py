@@ -3,6 +3,7 @@ points (the cost map), with the breakdown of summary.json.
 
 usage: plot_dem_work.py OUTPUT_DIR [-o picture.png] [--step N] [--initial]
                         [--below-strain E [E ...]] [--stages S [S ...] --case CASE.json]
+                        [--by-net-strain FROM_STEP]
 
 Reads the dem_particle_steps_m<ID> fields of OUTPUT_DIR/results.h5 at the last output step (or
 --step N) and the points' positions there (--initial: at the first output step, the undeformed
@@ -16,6 +17,13 @@ threshold E could have saved on this run (a point that switches later redoes tha
 its catch-up: only points that never pass E save their work).
 --stages S...: a footing run's work between the settlements s/B = S (CASE.json gives the
 footing's width; each output step's work interpolated to s/B by history.csv's settlement).
+--by-net-strain FROM_STEP: the work from output step FROM_STEP to the last (or --step), the
+points grouped by their net strain change |Δε| over it (below 0.01, 0.01-0.05, 0.05-0.2, above):
+per group the points, their share of the work, the median ratio of the strain path seen at the
+output steps (Σ |Δε| between them) to the net change, and the median particle-steps per unit of
+that path. The sub-step rule charges work per unit of strain the RVE runs, so a group that
+takes many times more work per unit of the seen path than the sheared points follows strain
+that reverses between output steps (noise).
 """
 from mpm_lig_post.requirements import require
 
@@ -83,6 +91,35 @@ def work_by_stage(fields, directory, case_file, edges):
     return [(edges[i], edges[i + 1], work[i + 1] - work[i]) for i in range(len(edges) - 1)]
 
 
+NET_STRAIN_GROUPS = (0.0, 0.01, 0.05, 0.2, np.inf)
+
+
+def work_by_net_strain(fields, first, last):
+    """[(|Δε| from, to, points, work share, median path / net, median work per unit path)]
+    between output steps `first` and `last`, the points grouped by their net |Δε|."""
+    steps = [s for s in fields.steps if first <= s <= last]
+    if len(steps) < 2:
+        raise InputError(f"--by-net-strain {first}: fewer than two output steps from it to {last}")
+    strains = [np.asarray(fields.step(s)["strain"], dtype=float) for s in steps]
+    net = strain_norm(strains[-1] - strains[0])
+    path = sum(strain_norm(b - a) for a, b in zip(strains, strains[1:]))
+    work = point_work(fields, steps[-1])[0] - point_work(fields, steps[0])[0]
+    total = work.sum()
+    out = []
+    for lo, hi in zip(NET_STRAIN_GROUPS, NET_STRAIN_GROUPS[1:]):
+        group = (net >= lo) & (net < hi)
+        if not group.any():
+            out.append((lo, hi, 0, 0.0, float("nan"), float("nan")))
+            continue
+        seen = path[group] > 0
+        ratio = np.median(path[group][seen] / np.maximum(net[group][seen], 1e-300)) \
+            if seen.any() else float("nan")
+        per_path = np.median(work[group][seen] / path[group][seen]) if seen.any() else float("nan")
+        out.append((lo, hi, int(group.sum()), work[group].sum() / total if total > 0 else 0.0,
+                    ratio, per_path))
+    return out
+
+
 def top_shares(work, fractions=(0.01, 0.05, 0.10, 0.25)):
     """[(fraction of points, share of the work they took)] for the most expensive points."""
     order = np.sort(work)[::-1]
@@ -104,6 +141,8 @@ def main():
     p.add_argument("--stages", type=cli.non_negative, nargs="+", default=[], metavar="S",
                    help="a footing's work between these settlements s/B (needs --case)")
     p.add_argument("--case", help="the run's case file (the footing's width, for --stages)")
+    p.add_argument("--by-net-strain", type=cli.non_negative_int, metavar="FROM_STEP",
+                   help="the work from this output step on, by the points' net strain change")
     args = p.parse_args()
     directory = cli.output_dir(args)
     if args.stages and (not args.case or len(args.stages) < 2 or
@@ -116,6 +155,8 @@ def main():
         where = fields.step(fields.steps[0] if args.initial else step)["positions"]
         below = work_below_strain(fields, args.below_strain, step) if args.below_strain else []
         stages = work_by_stage(fields, directory, args.case, args.stages) if args.stages else []
+        by_net = (work_by_net_strain(fields, args.by_net_strain, step)
+                  if args.by_net_strain is not None else [])
     finally:
         fields.close()
     total = work.sum()
@@ -134,6 +175,11 @@ def main():
     for threshold, share in below:
         print(f"  done while the point's |strain| < {threshold:g}: {100 * share:.1f} % of the work "
               "(bounds what a continuum start with that threshold saves)")
+    if by_net:
+        print(f"  from output step {args.by_net_strain} to {step}, by net |strain change|:")
+    for lo, hi, count, share, ratio, per_path in by_net:
+        print(f"    {lo:g} to {hi:g}: {count} points, {100 * share:.1f} % of the work, "
+              f"path / net {ratio:.3g}, {per_path:.3g} particle-steps per unit path")
     fig, ax = figures.subplots(figsize=(6.4, 5.2))  # imports matplotlib
     positive = work > 0
     vmin = work[positive].min() if positive.any() else 1.0
