@@ -19,13 +19,13 @@ def expect(condition, message):
         sys.exit("FAILED: " + message)
 
 
-def footing_run(d, level, peak, particle_steps):
-    """q/q_s = level at s/B = 0.005, 0.015, ... 0.505 except `peak` at s/B = 0.205 (no row on
-    the plateau window's ends: 30 rows inside it)."""
+def footing_run(d, level, peak, particle_steps, rows=51):
+    """q/q_s = level at s/B = 0.005, 0.015, ... (`rows` of them: to 0.505 by default) except
+    `peak` at s/B = 0.205 (no row on the plateau window's ends: 30 rows inside it)."""
     os.makedirs(d)
     with open(os.path.join(d, "history.csv"), "w") as f:
         f.write("step,settlement,q\n")
-        for k in range(51):
+        for k in range(rows):
             s_over_b = 0.005 + 0.01 * k
             ratio = peak if k == 20 else level
             f.write(f"{k},{s_over_b * 0.2!r},{ratio * 1e5!r}\n")
@@ -52,6 +52,18 @@ def main():
     expect(abs(cheap["errors"]["peak q/q_s"] - 0.05) < 1e-9, f"peak error {cheap['errors']}")
     expect(abs(cheap["errors"]["plateau q/q_s"] - ((29 * 10.3 + 12.6) / 30 / ref_plateau - 1))
            < 1e-9, f"plateau error {cheap['errors']}")
+    # footing_to_1: the peak to s/B 1.0, the plateau and the mean over s/B 0.4-1.0 (60 rows)
+    footing_run(os.path.join(work, "ref1"), 10.0, 12.0, 1e9, rows=101)
+    footing_run(os.path.join(work, "cheap1"), 10.3, 12.6, 2e8, rows=101)
+    r = subprocess.run(["/usr/bin/python3", TOOL, os.path.join(work, "ref1"),
+                        os.path.join(work, "cheap1"),
+                        "--case", os.path.join(work, "ref", "case.json"),
+                        "--quantities", "footing_to_1", "--json", out],
+                       capture_output=True, text=True)
+    expect(r.returncode == 0, f"footing_to_1: exit {r.returncode}: {r.stderr}")
+    errors = json.load(open(out))[1]["errors"]
+    expect(abs(errors["peak q/q_s"] - 0.05) < 1e-9 and
+           abs(errors["q/q_s, s/B 0.4-1.0"] - 0.03) < 1e-9, f"footing_to_1 errors {errors}")
     r = subprocess.run(["/usr/bin/python3", TOOL, os.path.join(work, "cheap"),
                         os.path.join(work, "ref")], capture_output=True, text=True)
     expect(r.returncode == 2 and "case.json: no such case file" in r.stderr, f"no case: {r.stderr}")

@@ -287,6 +287,12 @@ PRESETS = {
     "footing": lambda: [
         Quantity("plateau q/q_s", SCALAR, "", plateau(0.1, 0.4)),
         Quantity("peak q/q_s", SCALAR, "", footing_peak(0.4))],
+    # A footing pushed to d/B = 1.0 (the internal length's mesh study): the peak, the plateau
+    # and the post-peak mean.
+    "footing_to_1": lambda: [
+        Quantity("peak q/q_s", SCALAR, "", footing_peak(1.0)),
+        Quantity("q/q_s, s/B 0.1-0.4", SCALAR, "", plateau(0.1, 0.4)),
+        Quantity("q/q_s, s/B 0.4-1.0", SCALAR, "", plateau(0.4, 1.0))],
     # A footing pushed to d/B = 1.5: the peak, the plateau and the two post-peak stages.
     "footing_deep": lambda: [
         Quantity("peak q/q_s", SCALAR, "", footing_peak(1.5)),
@@ -305,7 +311,8 @@ def default_preset(case):
     if case.get("output", {}).get("simple_shear"):
         return "cyclic"
     raise InputError("cannot tell what the case is about: give \"quantities\" in the study "
-                     "(element | cyclic | footing | footing_deep | a list of history columns)")
+                     "(element | cyclic | footing | footing_to_1 | footing_deep | a list of "
+                     "history columns)")
 
 
 def quantities(spec, case, where):

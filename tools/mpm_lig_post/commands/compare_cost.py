@@ -6,10 +6,11 @@ usage: compare_cost.py REFERENCE_DIR RUN_DIR [...] [--case CASE.json] [--quantit
                        [--json OUT.json]
 
 Every directory is an mpm_lig output folder (summary.json, history.csv). The quantities are
-those of tools/accuracy_cost.py (preset element | cyclic | footing | footing_deep, by default
-the one the case is about: footing = plateau mean of q/q_s over s/B in [0.1, 0.4] and the peak
-up to s/B 0.4; footing_deep = the peak up to s/B 1.5 and the means over 0.1-0.4, 0.4-1.0 and
-1.0-1.5; cyclic = cycle of liquefaction and G_sec per cycle). CASE.json (default: the reference's
+those of tools/accuracy_cost.py (preset element | cyclic | footing | footing_to_1 |
+footing_deep, by default the one the case is about: footing = plateau mean of q/q_s over s/B in
+[0.1, 0.4] and the peak up to s/B 0.4; footing_to_1 = the peak up to s/B 1.0 and the means over
+0.1-0.4 and 0.4-1.0; footing_deep = the peak up to s/B 1.5 and the means over 0.1-0.4, 0.4-1.0
+and 1.0-1.5; cyclic = cycle of liquefaction and G_sec per cycle). CASE.json (default: the reference's
 case.json if it wrote one) tells the footing's width and surcharge. Errors are relative,
 an angle's in degrees (as in tools/accuracy_cost.py)."""
 from mpm_lig_post.requirements import require
