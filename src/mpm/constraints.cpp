@@ -62,6 +62,28 @@ NodeConstraints<D>::NodeConstraints(const std::vector<Constraint>& constraints,
 }
 
 template <int D>
+bool NodeConstraints<D>::prescribes_every_node(const Grid<D>& grid) const {
+  std::vector<std::array<bool, D>> held(grid.node_count(), std::array<bool, D>{});
+  for (const Set& s : sets_) {
+    const bool all =
+        s.spec.type == Constraint::Type::fixed || s.spec.type == Constraint::Type::rotation;
+    for (const long node : s.nodes)
+      for (int d = 0; d < D; ++d)
+        held[node][d] = held[node][d] || all || d == s.spec.direction;
+  }
+  for (std::size_t id = 0; id < held.size(); ++id) {
+    const auto index = grid.node_index(static_cast<long>(id));
+    bool partner_elsewhere = false;
+    for (int d = 0; d < D; ++d)
+      partner_elsewhere = partner_elsewhere || grid.wrap(index[d], d) != index[d];
+    for (int d = 0; d < D && !partner_elsewhere; ++d)
+      if (!held[id][d])
+        return false;
+  }
+  return true;
+}
+
+template <int D>
 void NodeConstraints<D>::apply(Grid<D>& grid, double t, double scale, double dt, bool record) {
   for (std::size_t k = 0; k < sets_.size(); ++k) {
     const Constraint& c = sets_[k].spec;

@@ -27,6 +27,10 @@ class NodeConstraints {
   void apply(Grid<D>& grid, double t, double scale, double dt, bool record);
 
   std::size_t count() const { return sets_.size(); }
+  //! Whether every velocity component of every node of `grid` is imposed (a fully prescribed
+  //! motion, which leaves no dynamics to be unstable); an upper periodic face counts as its
+  //! lower partner.
+  bool prescribes_every_node(const Grid<D>& grid) const;
   //! Reaction force of constraint k from the last recorded application [N].
   const Vec& reaction(std::size_t k) const { return reactions_[k]; }
   //! Nodes of constraint k (for tests and diagnostics).

@@ -125,7 +125,7 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
 template <int D>
 void Solver<D>::check_fixed_time_step(const MpmCase& c) const {
   const double limit = stable_time_step(c, 1.0);
-  if (c.time_step <= limit)
+  if (c.time_step <= limit || constraints_.prescribes_every_node(grid_))
     return;
   std::ostringstream text;
   text << c.time_step << " s is above the stable time step " << limit

@@ -73,8 +73,9 @@ class Solver {
  private:
   //! The cell over the fastest wave speed, times `cfl`.
   double stable_time_step(const MpmCase& c, double cfl) const;
-  //! A fixed time step above the stable step (CFL 1) is refused: the explicit update would
-  //! grow without bound, or, damped, end with a wrong answer and no error.
+  //! A fixed time step above the stable step (CFL 1) is refused, unless every node's
+  //! velocity is prescribed: the explicit update would grow without bound, or, damped, end
+  //! with a wrong answer and no error.
   void check_fixed_time_step(const MpmCase& c) const;
   void compute_shape_functions();
   //! The second-gradient energy's share of each point's internal-force tensor
