@@ -25,16 +25,23 @@ std::vector<long> select_nodes(const NodeSelector& selector, const Grid<D>& grid
 
 namespace {
 
+//! The node that carries node `id`'s mass: its lower-face partner on an upper face of a
+//! periodic axis, itself otherwise.
+template <int D>
+long periodic_partner(long id, const Grid<D>& grid) {
+  const auto index = grid.node_index(id);
+  std::array<long, D> folded{};
+  for (int d = 0; d < D; ++d)
+    folded[d] = grid.wrap(index[d], d);
+  return grid.node_id(folded);
+}
+
 //! Replace upper-face nodes of periodic axes by their lower-face partners, without repeats.
 template <int D>
 std::vector<long> fold_periodic(const std::vector<long>& nodes, const Grid<D>& grid) {
   std::vector<long> out;
   for (const long id : nodes) {
-    const auto index = grid.node_index(id);
-    std::array<long, D> folded{};
-    for (int d = 0; d < D; ++d)
-      folded[d] = grid.wrap(index[d], d);
-    const long partner = grid.node_id(folded);
+    const long partner = periodic_partner(id, grid);
     if (std::find(out.begin(), out.end(), partner) == out.end())
       out.push_back(partner);
   }
@@ -72,11 +79,9 @@ bool NodeConstraints<D>::prescribes_every_node(const Grid<D>& grid) const {
         held[node][d] = held[node][d] || all || d == s.spec.direction;
   }
   for (std::size_t id = 0; id < held.size(); ++id) {
-    const auto index = grid.node_index(static_cast<long>(id));
-    bool partner_elsewhere = false;
+    if (periodic_partner(static_cast<long>(id), grid) != static_cast<long>(id))
+      continue;  // its partner's constraints are the ones that act
     for (int d = 0; d < D; ++d)
-      partner_elsewhere = partner_elsewhere || grid.wrap(index[d], d) != index[d];
-    for (int d = 0; d < D && !partner_elsewhere; ++d)
       if (!held[id][d])
         return false;
   }

@@ -171,9 +171,9 @@ class Block:
             self.surcharge_update()
             self.run(self.args.surcharge_every)
             o = self.observe()
-            self.damp_kinetic(st)
             kr = self.kinetic_ratio(o, self.lx * self.ly, self.pb["p0"])
             row = self.history_row(0.0)
+            self.damp_kinetic(st, row["kinetic_energy"])
             st["balance"] = row["base_force"] / (row["surcharge_force"] + row["footing_force"]) - 1.0
             st["settled"] = st["settled"] + 1 if kr < AT_REST or abs(st["balance"]) < BALANCE else 0
             st["updates"] += 1
@@ -195,16 +195,15 @@ class Block:
                       f"{st['balance']:+.4f}, footing q/q_s = {row['q_over_qs']:.3f}, "
                       f"{st['quenches']} quenches", force=True)
 
-    def damp_kinetic(self, st):
+    def damp_kinetic(self, st, kinetic):
         """--settle-damping kinetic: the soil's velocities set to zero whenever its kinetic
-        energy has passed a maximum (dynamic relaxation; their spins are left to the contacts:
+        energy (`kinetic`, this chunk's) has passed a maximum (dynamic relaxation; their spins are left to the contacts:
         this LIGGGHTS has no per-grain `set ... omega`). A block opened from its periodic
         cell rings in its lowest vertical mode, which the contacts' damping hardly touches (the
         B/d = 80 block still swung +-20 % of its load after 400 updates): each quench takes out
         the energy of one swing, and what is left is the block's static state."""
         if self.args.settle_damping != "kinetic":
             return
-        kinetic = self.session.values("KS", ["c_ke_soil"])[0]
         if kinetic < st["last_kinetic"]:
             self.send("velocity soil set 0.0 0.0 0.0")
             st["quenches"] += 1
