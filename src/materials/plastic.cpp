@@ -46,14 +46,27 @@ Mat3 VonMises::correct(std::size_t point, const Mat3& trial) {
   return trial - (1.0 - returned / q) * deviator;
 }
 
+MohrCoulombStrength MohrCoulomb::strength(double kappa) const {
+  if (!(softening_.plastic_strain > 0.0))
+    return strength_;
+  const double progress = std::min(kappa / softening_.plastic_strain, 1.0);
+  MohrCoulombStrength softened = strength_;
+  softened.friction += progress * (softening_.residual_friction - strength_.friction);
+  softened.dilatancy += progress * (softening_.residual_dilatancy - strength_.dilatancy);
+  return softened;
+}
+
 Mat3 MohrCoulomb::correct(std::size_t point, const Mat3& trial) {
+  // The strength of the step's start (explicit in κ): the MPM's steps are small against the
+  // softening range, and the return stays the exact perfectly plastic one.
+  const MohrCoulombStrength now = strength(state(point, 0));
   // Most points of a footing analysis are elastic in a step: test before the full spectral
   // decomposition.
-  if (strength_.admissible(principal_values(trial)))
+  if (now.admissible(principal_values(trial)))
     return trial;
   const Principal p = principal(trial);
   ReturnKind kind;
-  const Vec3 returned = mohr_coulomb_return(p.values, elasticity(), strength_, &kind);
+  const Vec3 returned = mohr_coulomb_return(p.values, elasticity(), now, &kind);
   if (kind == ReturnKind::elastic)
     return trial;
   accumulate(point, plastic_strain(p.values, returned, elasticity()));

@@ -66,16 +66,31 @@ class VonMises : public PlasticMaterial {
   Softening softening_;
 };
 
-//! "mohr_coulomb" (and "tresca" as its φ = ψ = 0 case): perfectly plastic, non-associated
-//! flow with dilatancy ψ, return in principal stress space (plane, edge, apex).
+//! Friction and dilatancy angles falling linearly with the accumulated deviatoric plastic
+//! strain κ from the peak (the material's φ, ψ) to residual values reached at κ_r: a dense
+//! sand's softening, as a packing's biaxial test measures it. κ_r = 0: no softening.
+struct FrictionSoftening {
+  double residual_friction = 0.0;   //!< φ_r [rad], in (0, φ]
+  double residual_dilatancy = 0.0;  //!< ψ_r [rad], in [0, min(ψ, φ_r)]
+  double plastic_strain = 0.0;      //!< κ_r
+};
+
+//! "mohr_coulomb" (and "tresca" as its φ = ψ = 0 case): non-associated flow with dilatancy
+//! ψ, return in principal stress space (plane, edge, apex); perfectly plastic, or with the
+//! angles softening (FrictionSoftening).
 class MohrCoulomb : public PlasticMaterial {
  public:
   MohrCoulomb(std::string type, double density, const Elasticity& elasticity,
-              const MohrCoulombStrength& strength)
-      : PlasticMaterial(density, elasticity), type_(std::move(type)), strength_(strength) {}
+              const MohrCoulombStrength& strength, const FrictionSoftening& softening = {})
+      : PlasticMaterial(density, elasticity),
+        type_(std::move(type)),
+        strength_(strength),
+        softening_(softening) {}
 
   std::string type() const override { return type_; }
   const MohrCoulombStrength& strength() const { return strength_; }
+  //! The strength after a deviatoric plastic strain `kappa` (the peak one without softening).
+  MohrCoulombStrength strength(double kappa) const;
 
  protected:
   Mat3 correct(std::size_t point, const Mat3& trial) override;
@@ -83,6 +98,7 @@ class MohrCoulomb : public PlasticMaterial {
  private:
   std::string type_;
   MohrCoulombStrength strength_;
+  FrictionSoftening softening_;
 };
 
 }  // namespace mpm_lig::materials

@@ -1,6 +1,7 @@
 // The continuum materials: one place that maps case-file names to laws and reads their keys.
 // Every key is documented in README.md, section "Materials".
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -62,7 +63,22 @@ std::unique_ptr<Material> read_mohr_coulomb(const CaseNode& node) {
     // Beyond the apex c cot φ the cutoff would never act: reject it rather than ignore it.
     strength.tension_cutoff = node.in_range("tension_cutoff", 0.0, strength.apex());
   }
-  return std::make_unique<MohrCoulomb>("mohr_coulomb", density, elasticity, strength);
+  FrictionSoftening softening;
+  if (node.has("softening")) {
+    // The cutoff is checked against the peak's apex; a softened φ moves the apex outward
+    // (c cot φ grows as φ falls), so it stays inside.
+    const CaseNode soft = node.child("softening");
+    const double peak_deg = strength.friction / kDegree;
+    const double residual_deg = soft.in_range("residual_friction_deg", 0.0, peak_deg);
+    if (!(residual_deg > 0.0))
+      soft.fail("residual_friction_deg", "must be above 0");
+    softening.residual_friction = residual_deg * kDegree;
+    const double dilatancy_cap = std::min(strength.dilatancy / kDegree, residual_deg);
+    softening.residual_dilatancy =
+        soft.in_range_or("residual_dilatancy_deg", 0.0, dilatancy_cap, 0.0) * kDegree;
+    softening.plastic_strain = soft.positive("plastic_strain");
+  }
+  return std::make_unique<MohrCoulomb>("mohr_coulomb", density, elasticity, strength, softening);
 }
 
 std::unique_ptr<Material> read_drucker_prager(const CaseNode& node) {

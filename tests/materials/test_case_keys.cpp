@@ -54,6 +54,15 @@ TEST(MaterialCaseKeys, EachMaterialReadsItsKeys) {
   const MohrCoulombStrength& s = dynamic_cast<MohrCoulomb&>(*mc).strength();
   EXPECT_NEAR(s.friction, s.dilatancy, 1e-15);
   EXPECT_DOUBLE_EQ(s.tension_cutoff, 500.0);
+
+  auto soft = create(R"({"type": "mohr_coulomb", "cohesion": 0, "friction_deg": 31,
+                         "dilatancy_deg": 10, "softening": {"residual_friction_deg": 20,
+                         "plastic_strain": 0.1}, )" +
+                     kElastic + "}");
+  const auto& softening = dynamic_cast<MohrCoulomb&>(*soft);
+  EXPECT_NEAR(softening.strength(0.05).friction, 25.5 * kDegree, 1e-12);
+  EXPECT_NEAR(softening.strength(0.05).dilatancy, 5.0 * kDegree, 1e-12);  // ψ_r default 0
+  EXPECT_NEAR(softening.strength(1.0).friction, 20.0 * kDegree, 1e-12);
 }
 
 TEST(MaterialCaseKeys, BadValuesNameTheirJsonPath) {
@@ -100,6 +109,24 @@ TEST(MaterialCaseKeys, BadValuesNameTheirJsonPath) {
             "materials[0].friction_deg");
   EXPECT_EQ(error_path(mc + R"("frction_deg": 30, "friction_deg": 30, )" + kElastic + "}"),
             "materials[0].frction_deg");
+  const std::string soft = mc + R"("friction_deg": 30, "dilatancy_deg": 8, "softening": )";
+  EXPECT_EQ(error_path(soft + R"({"residual_friction_deg": 31, "plastic_strain": 0.1}, )" +
+                       kElastic + "}"),
+            "materials[0].softening.residual_friction_deg");  // above the peak
+  EXPECT_EQ(error_path(soft + R"({"residual_friction_deg": 0, "plastic_strain": 0.1}, )" +
+                       kElastic + "}"),
+            "materials[0].softening.residual_friction_deg");
+  EXPECT_EQ(error_path(soft + R"({"residual_friction_deg": 20, "residual_dilatancy_deg": 9,
+                                  "plastic_strain": 0.1}, )" +
+                       kElastic + "}"),
+            "materials[0].softening.residual_dilatancy_deg");  // above the peak ψ
+  EXPECT_EQ(error_path(soft + R"({"residual_friction_deg": 20}, )" + kElastic + "}"),
+            "materials[0].softening.plastic_strain");
+  EXPECT_EQ(error_path(soft + R"({"residual_friction_deg": 20, "plastic_strain": 0.1,
+                                  "plastic_strian": 1}, )" +
+                       kElastic + "}"),
+            "materials[0].softening.plastic_strian");
+  EXPECT_EQ(error_path(soft + "20, " + kElastic + "}"), "materials[0].softening");
   EXPECT_EQ(error_path(mc + R"("friction_deg": 30, )" + kElastic + "}"), "");
   const std::string dp = R"({"type": "drucker_prager", "cohesion": 1e3, "friction_deg": 30, )";
   EXPECT_EQ(error_path(dp + kElastic + "}"), "materials[0].match");

@@ -144,6 +144,47 @@ TEST(MohrCoulomb, PlaneStrainSimpleShearLimitMatchesDavis) {
   }
 }
 
+TEST(MohrCoulomb, SofteningAnglesFollowThePlasticStrainToTheResidual) {
+  // Drained triaxial compression: on the surface σ1/σ3 = (1 + sin φ)/(1 − sin φ) exactly, for
+  // the φ of the plastic strain κ at the step's start (the strength is explicit in κ), step by
+  // step down to the residual angle; then simple shear ends on Davis's residual limit.
+  const double confining = 100e3, kappa_r = 0.05;
+  const double phi_p = 32.0, psi_p = 8.0, phi_r = 20.0, psi_r = 0.0;
+  const FrictionSoftening softening{phi_r * kDegree, psi_r * kDegree, kappa_r};
+  MohrCoulomb m("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(0.0, phi_p, psi_p), softening);
+  m.add_points(1);
+  testing::triaxial_compression(m, confining, 0, 0.0);  // the isotropic start
+  bool yielded = false;
+  for (int i = 0; i < 1500; ++i) {
+    const double kappa = m.state(0, 0);
+    const double phi = (phi_p + std::min(kappa / kappa_r, 1.0) * (phi_r - phi_p)) * kDegree;
+    Mat3 dF = Mat3::Identity();
+    dF(2, 2) = 1.0 - 1e-4;
+    const Mat3 s = testing::mixed_step(m, dF, {{0, 1}}, Vec3(-confining, -confining, 0.0));
+    if (m.state(0, 0) > kappa) {
+      yielded = true;
+      const double ratio = (1.0 + std::sin(phi)) / (1.0 - std::sin(phi));
+      ASSERT_NEAR(s(2, 2) / s(0, 0), ratio, 1e-6 * ratio) << i << " kappa " << kappa;
+    }
+  }
+  EXPECT_TRUE(yielded);
+  EXPECT_GT(m.state(0, 0), kappa_r);  // reached the residual angle
+  MohrCoulomb shear("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(0.0, phi_p, psi_p), softening);
+  shear.add_points(1);
+  const Mat3 s = testing::simple_shear_at_constant_vertical_stress(shear, confining, 2400, 2.5e-4);
+  EXPECT_GT(shear.state(0, 0), kappa_r);
+  const double sf = std::sin(phi_r * kDegree);
+  EXPECT_NEAR(std::abs(s(0, 1)) / confining, sf, 5e-3 * sf);  // Davis with ψ_r = 0: sin φ_r
+  // Without softening (κ_r = 0) the same material is the perfectly plastic one, bit for bit.
+  MohrCoulomb perfect("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(0.0, phi_p, psi_p));
+  MohrCoulomb zero("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(0.0, phi_p, psi_p),
+                   FrictionSoftening{phi_r * kDegree, psi_r * kDegree, 0.0});
+  perfect.add_points(1);
+  zero.add_points(1);
+  for (int i = 0; i < 300; ++i)
+    ASSERT_EQ(step(perfect, 0, pure_shear(1e-4)), step(zero, 0, pure_shear(1e-4))) << i;
+}
+
 TEST(MohrCoulomb, IsotropicTensionReturnsToTheApexSafely) {
   for (const double c : {0.0, 5e3}) {
     MohrCoulomb m("mohr_coulomb", 1800.0, kElastic, mohr_coulomb(c, 35.0, 5.0));
