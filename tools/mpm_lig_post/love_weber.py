@@ -20,11 +20,12 @@ def branch_vectors(xy_first, xy_second, period=None):
 
 
 def window_stress(members, xy, radii, contacts, area, thickness, masses=None, velocities=None,
-                  period=None):
+                  period=None, symmetric=True):
     """2 x 2 Cauchy stress (tension positive) of the grains where `members` (bool per grain) is
     true. `contacts`: (first, second, fx, fy) with first / second grain indices into xy and
     (fx, fy) the force on `first` from `second`; `area` the set's area [m^2]. With masses
-    (per grain) and velocities (n x 2) the kinetic part is included."""
+    (per grain) and velocities (n x 2) the kinetic part is included. symmetric=False keeps the
+    antisymmetric part (the grains' rolling torques and angular accelerations over V)."""
     first, second, force = contacts
     first = np.asarray(first, int)
     second = np.asarray(second, int)
@@ -45,7 +46,7 @@ def window_stress(members, xy, radii, contacts, area, thickness, masses=None, ve
         v = v - (m @ v) / m.sum()
         total -= np.einsum("k,ki,kj->ij", m, v, v)
     sigma = total / (area * thickness)
-    return 0.5 * (sigma + sigma.T)
+    return 0.5 * (sigma + sigma.T) if symmetric else sigma
 
 
 def invariants(sigma):

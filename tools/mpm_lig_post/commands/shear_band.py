@@ -51,17 +51,23 @@ def snapshots(run):
     return summary, found
 
 
-def positions_at(run, found, s):
-    """Grain centres (id order) at the snapshot nearest s/B = s, or at the start (s = 0)."""
-    if s == 0:
-        return np.load(os.path.join(run, "reference.npz"))["xy"], 0.0
+def nearest_snapshot(run, found, s):
+    """(grains.vtk path, its s/B) of the snapshot within 0.02 of s/B = s."""
     if not found:
         raise InputError(f"{run}/snapshots: no grain snapshot")
     nearest = min(found, key=lambda k: abs(k - s))
     if abs(nearest - s) > 0.02:
         raise InputError(f"{run}: no snapshot near s/B = {s:g} (has "
                          f"{', '.join(f'{k:.3f}' for k in sorted(found))})")
-    return read_polydata(found[nearest]).points[:, :2], nearest
+    return found[nearest], nearest
+
+
+def positions_at(run, found, s):
+    """Grain centres (id order) at the snapshot nearest s/B = s, or at the start (s = 0)."""
+    if s == 0:
+        return np.load(os.path.join(run, "reference.npz"))["xy"], 0.0
+    path, nearest = nearest_snapshot(run, found, s)
+    return read_polydata(path).points[:, :2], nearest
 
 
 def band(run, s_from, s_to, widths, level):
