@@ -2,7 +2,8 @@
 MPM case where grains need not be simulated (a `dem_rve` region beside a continuum region).
 
 usage: calibrate_continuum.py RUN_DIR RUN_DIR [...] [--id N] [--reference-pressure PA]
-                              [--small-strain 1e-3] [--grain-density 2650] [--json OUT.json]
+                              [--small-strain 1e-3] [--grain-density 2650]
+                              [--residual LO HI] [--json OUT.json]
 
 Each RUN_DIR holds history.csv and summary.json of one drained biaxial (2D) or triaxial (3D)
 element test of the same packing, at two or more confining pressures. From them:
@@ -15,7 +16,11 @@ element test of the same packing, at two or more confining pressures. From them:
     confining pressure is closest to PA; default the middle one): plane strain in 2D,
     nu/(1 - nu) = -de_3/de_1 and E = (1 - nu^2) ds1/de_1; axisymmetric in 3D, nu = -de_3/de_1,
     E = ds1/de_1;
-  - density: grain density / (1 + e0), e0 the reference run's prepared void ratio.
+  - density: grain density / (1 + e0), e0 the reference run's prepared void ratio;
+  - with --residual LO HI, the softening (mohr_coulomb's "softening"): phi_r the runs' mean
+    mobilised angle over axial strain LO ... HI, and kappa_r the mean over runs of the
+    deviatoric strain sqrt(2/3 de:de) (de the strain's deviator) travelled from each run's
+    peak to its first state at or below its own residual angle (psi_r = 0: critical state).
 Prints a table per run and the material block, ready for the case's "materials" list; --json
 writes both. A soil's stiffness grows with pressure: calibrate at the pressure of the region.
 """
@@ -80,6 +85,42 @@ def elastic_secant(summary, s1, e1, ev, small_strain):
     return (1.0 - nu * nu) * d1 / de1, nu
 
 
+def deviatoric_travel(e1, ev, dimension, start, end):
+    """sqrt(2/3 de:de) of the strain change between rows start and end (principal axes fixed:
+    axial e1, the lateral strain from e_v; plane strain has no out-of-plane strain)."""
+    de1 = e1[end] - e1[start]
+    dlat = (ev[end] - ev[start]) - de1
+    strain = [de1, dlat, 0.0] if dimension == 2 else [de1, 0.5 * dlat, 0.5 * dlat]
+    dev = np.array(strain) - sum(strain) / 3.0
+    return math.sqrt(2.0 / 3.0 * float(dev @ dev))
+
+
+def softening(runs, lo, hi):
+    """(phi_r [deg], kappa_r, per-run rows) of the runs' softening from peak to residual."""
+    rows = []
+    for (run, summary, s1, s3, e1, ev) in runs:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ratio = np.where(s1 + s3 > 0, (s1 - s3) / (s1 + s3), 0.0)
+        phi = np.degrees(np.arcsin(np.clip(ratio, -1.0, 1.0)))
+        inside = (e1 >= lo) & (e1 <= hi)
+        if not inside.any():
+            raise InputError(f"{run.directory}: the run ends at {100 * e1.max():.3g} % axial "
+                             f"strain, before the residual window {100 * lo:g}-{100 * hi:g} %")
+        residual = float(np.mean(phi[inside]))
+        peak = int(np.argmax(phi))
+        reached = np.nonzero((np.arange(len(phi)) > peak) & (phi <= residual))[0]
+        if len(reached) == 0:
+            raise InputError(f"{run.directory}: the mobilised angle never falls to its residual "
+                             f"{residual:.2f} deg after the peak")
+        kappa = deviatoric_travel(e1, ev, summary["dimension"], peak, int(reached[0]))
+        rows.append({"run": run.directory, "peak_deg": float(phi[peak]),
+                     "residual_deg": residual, "peak_axial_strain": float(e1[peak]),
+                     "residual_reached_at_axial_strain": float(e1[reached[0]]),
+                     "softening_strain": kappa})
+    return (float(np.mean([r["residual_deg"] for r in rows])),
+            float(np.mean([r["softening_strain"] for r in rows])), rows)
+
+
 def main():
     p = cli.ArgumentParser(description=__doc__.split("\n")[1])
     p.add_argument("runs", nargs="+")
@@ -89,8 +130,12 @@ def main():
                    help="Pa: the run for E, nu, psi and density (default the middle pressure)")
     p.add_argument("--small-strain", type=cli.positive, default=1e-3)
     p.add_argument("--grain-density", type=cli.positive, default=2650.0)
+    p.add_argument("--residual", type=cli.non_negative, nargs=2, metavar=("LO", "HI"),
+                   help="axial strain window of the residual angle: adds the softening")
     p.add_argument("--json")
     a = p.parse_args()
+    if a.residual is not None and not a.residual[0] < a.residual[1] < 1.0:
+        raise InputError(f"--residual {a.residual[0]:g} {a.residual[1]:g}: LO < HI < 1 needed")
     cli.writable_file(a.json, "--json file")
     if a.small_strain >= 1.0:
         raise InputError(f"--small-strain {a.small_strain:g}: an axial strain below 1 is needed")
@@ -137,6 +182,12 @@ def main():
                 "friction_deg": round(math.degrees(phi), 2),
                 "dilatancy_deg": round(psi, 2),
                 "_calibrated_from": ", ".join(r["run"] for r in rows)}
+    soft_rows = []
+    if a.residual is not None:
+        phi_r, kappa_r, soft_rows = softening(runs, *a.residual)
+        material["softening"] = {"residual_friction_deg": round(min(phi_r, math.degrees(phi)), 2),
+                                 "residual_dilatancy_deg": 0.0,
+                                 "plastic_strain": float(f"{kappa_r:.4g}")}
     print(f"{'run':40s} {'p0 [kPa]':>9s} {'phi_mob':>8s} {'E [MPa]':>9s} {'nu':>6s}")
     for i, r in enumerate(rows):
         print(f"{r['run'][-40:]:40s} {r['confining_pressure'] / 1e3:9.1f} "
@@ -146,13 +197,18 @@ def main():
           f"c' = {cohesion / 1e3:.2f} kPa" + (" (negative: set to 0)" if cohesion < 0 else ""))
     if not 0.0 <= rows[ref]["poisson_ratio"] <= 0.49:
         notes.append(f"nu {rows[ref]['poisson_ratio']:.3f} kept within 0 ... 0.49")
+    for r in soft_rows:
+        print(f"{r['run'][-40:]:40s} peak {r['peak_deg']:.2f} deg at "
+              f"{100 * r['peak_axial_strain']:.2f} %, residual {r['residual_deg']:.2f} deg first "
+              f"at {100 * r['residual_reached_at_axial_strain']:.2f} %: deviatoric strain "
+              f"{r['softening_strain']:.4f}")
     for n in notes:
         print("note: " + n)
     print(json.dumps(material))
     if a.json:
         with open(a.json, "w") as f:
-            json.dump({"runs": rows, "material": material, "fitted_cohesion": cohesion}, f,
-                      indent=1)
+            json.dump({"runs": rows, "material": material, "fitted_cohesion": cohesion,
+                       "softening_runs": soft_rows}, f, indent=1)
 
 
 def entry():
