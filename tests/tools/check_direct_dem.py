@@ -111,6 +111,16 @@ def bad(work):
               f"{name}: exit {code}, stderr names '{key}': {stderr.strip()[:160]}")
         check(not os.path.exists(out), f"{name}: no output folder created")
         check(len(stderr.strip().splitlines()) == 1, f"{name}: one line on stderr")
+    # a copy of tools/ without the checkout's lmp_inputs/ beside it: named, nothing created
+    copied = os.path.join(work, "copied", "tools")
+    shutil.copytree(os.path.join(HERE, "..", "..", "tools"), copied,
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    out = os.path.join(work, "out_copied_tools")
+    p = subprocess.run([sys.executable, os.path.join(copied, "direct_dem.py"), TINY, "--output",
+                        out], capture_output=True, text=True)
+    check(p.returncode == 2 and "input templates are not there" in p.stderr and
+          "Traceback" not in p.stderr and not os.path.exists(out),
+          f"tools/ copied without lmp_inputs/: exit {p.returncode}: {p.stderr.strip()[:160]}")
     # an output that is a file, or inside a read-only folder
     afile = os.path.join(work, "a_file")
     open(afile, "w").close()

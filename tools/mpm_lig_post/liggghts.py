@@ -14,6 +14,15 @@ TEMPLATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                          "liggghts")
 
 
+def require_templates():
+    """The engine templates are there, else an InputError saying where they should be: a copy
+    of tools/ or an installed package without the checkout's lmp_inputs/ beside it has none."""
+    if not os.path.isdir(TEMPLATES):
+        raise InputError(f"{os.path.normpath(TEMPLATES)}: the engine's input templates are not "
+                         "there (run the tool from an mpm_lig checkout, whose tools/ lies "
+                         "beside lmp_inputs/)")
+
+
 def render(name, values, flags):
     """An mpm_lig engine template: ${name} filled in, '#@if FLAG' blocks kept when FLAG is set."""
     out, keep = [], True

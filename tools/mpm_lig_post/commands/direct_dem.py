@@ -67,7 +67,7 @@ from mpm_lig_post.direct_dem.probes import check_probes
 from mpm_lig_post.direct_dem.report import chains_picture, summarise
 from mpm_lig_post.direct_dem.run import Run
 from mpm_lig_post.errors import InputError
-from mpm_lig_post.liggghts import EngineFailed
+from mpm_lig_post.liggghts import EngineFailed, require_templates
 from mpm_lig_post.run_folder import FolderLock, refuse_links, refuse_links_below
 from mpm_lig_post.tables import read_json
 
@@ -138,6 +138,7 @@ def main():
         a.liggghts = os.path.abspath(shutil.which(a.liggghts))  # the engine runs in the folder
     if a.liggghts is None and not shutil.which("liggghts"):
         raise InputError("liggghts: not on PATH (apt-get install liggghts, or give --liggghts)")
+    require_templates()
     a.case_digest = case_digest(a.case)
     cli.writable_folder(out)
     record = None

@@ -36,7 +36,8 @@ import numpy as np  # noqa: E402
 
 from mpm_lig_post import checkout, cli, figures  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
-from mpm_lig_post.liggghts import RunFailed, contact_values, render, run_command  # noqa: E402
+from mpm_lig_post.liggghts import (RunFailed, contact_values, render,  # noqa: E402
+                                    require_templates, run_command)
 from mpm_lig_post.quantities import PRESETS, Run, principal_series  # noqa: E402
 from mpm_lig_post.tables import need, read_history, read_json, read_text  # noqa: E402
 from mpm_lig_post.tradeoff import error  # noqa: E402
@@ -215,6 +216,7 @@ def main():
     cli.writable_folder(a.output)
     if not shutil.which(a.liggghts):
         raise InputError(f"{a.liggghts}: no liggghts executable (give --liggghts PATH)")
+    require_templates()
     library = a.library_run or os.path.join(a.output, "library")
     if a.library_run and not os.path.isdir(a.library_run):
         raise InputError(f"{a.library_run}: no such run folder (--library-run)")
