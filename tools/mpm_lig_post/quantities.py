@@ -123,7 +123,9 @@ def _dimension(run):
     return int(run.case.get("rve", {}).get("dimension", 3))
 
 
-def _mobilised(run):
+def mobilised(run):
+    """(mobilised friction angle [deg], axial strain, volumetric strain) per history row,
+    compression positive."""
     s1, s3, e1, ev = principal_series(run.history, _dimension(run))
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where(s1 + s3 > 0, (s1 - s3) / (s1 + s3), 0.0)
@@ -131,12 +133,12 @@ def _mobilised(run):
 
 
 def peak_friction(run):
-    return float(np.max(_mobilised(run)[0]))
+    return float(np.max(mobilised(run)[0]))
 
 
 def window_friction(lo, hi):
     def measure(run):
-        phi, e1, _ = _mobilised(run)
+        phi, e1, _ = mobilised(run)
         inside = (e1 >= lo) & (e1 <= hi)
         if not inside.any():
             raise NotReached(f"the run ends at {100 * e1.max():.3g} % axial strain, before "
@@ -147,7 +149,7 @@ def window_friction(lo, hi):
 
 def max_dilatancy(window=0.02):
     def measure(run):
-        _, e1, ev = _mobilised(run)
+        _, e1, ev = mobilised(run)
         best = None
         for k in range(len(e1)):
             inside = (e1 >= e1[k]) & (e1 <= e1[k] + window)

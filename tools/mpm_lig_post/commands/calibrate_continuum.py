@@ -36,8 +36,8 @@ import numpy as np  # noqa: E402
 
 from mpm_lig_post import cli  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
-from mpm_lig_post.quantities import (NotReached, Run, max_dilatancy, peak_ratio_row,  # noqa: E402
-                                     principal_series)
+from mpm_lig_post.quantities import (NotReached, Run, max_dilatancy, mobilised,  # noqa: E402
+                                     peak_ratio_row, principal_series)
 from mpm_lig_post.tables import need, read_json  # noqa: E402
 
 
@@ -98,10 +98,8 @@ def deviatoric_travel(e1, ev, dimension, start, end):
 def softening(runs, lo, hi):
     """(phi_r [deg], kappa_r, per-run rows) of the runs' softening from peak to residual."""
     rows = []
-    for (run, summary, s1, s3, e1, ev) in runs:
-        with np.errstate(invalid="ignore", divide="ignore"):
-            ratio = np.where(s1 + s3 > 0, (s1 - s3) / (s1 + s3), 0.0)
-        phi = np.degrees(np.arcsin(np.clip(ratio, -1.0, 1.0)))
+    for (run, summary, *_) in runs:
+        phi, e1, ev = mobilised(run)
         inside = (e1 >= lo) & (e1 <= hi)
         if not inside.any():
             raise InputError(f"{run.directory}: the run ends at {100 * e1.max():.3g} % axial "

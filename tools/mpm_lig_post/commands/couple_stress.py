@@ -73,13 +73,14 @@ def windows(summary, xy, radii, contacts, side, min_grains):
         for y0 in np.arange(0.0, ly - 0.5 * side, side):
             inside = (xy[:, 0] >= x0) & (xy[:, 0] < x0 + side) & \
                 (xy[:, 1] >= y0) & (xy[:, 1] < y0 + side)
-            if inside.sum() < min_grains:
+            count = int(inside.sum())
+            if count < min_grains:
                 continue
             sigma = window_stress(inside, xy, radii, contacts, side * side, summary["thickness"],
                                   symmetric=False)
             a, p, q = antisymmetric(sigma)
             rows.append({"x": x0 + 0.5 * side, "y": y0 + 0.5 * side,
-                         "grains": int(inside.sum()), "a": a, "p": p, "q": q})
+                         "grains": count, "a": a, "p": p, "q": q})
     return rows
 
 
@@ -94,15 +95,13 @@ def main():
     p.add_argument("--at", type=cli.non_negative, required=True, help="s/B of the snapshot")
     p.add_argument("--window", type=cli.positive, default=20.0,
                    help="window side in grain diameters d (default 20)")
-    p.add_argument("--min-grains", type=int, default=100,
+    p.add_argument("--min-grains", type=cli.positive_int, default=100,
                    help="skip windows with fewer grains (default 100)")
     p.add_argument("--json", help="write every window here")
     a = p.parse_args()
     run = a.output_dir
     if not os.path.isdir(run):
         raise InputError(f"{run}: no such output directory")
-    if a.min_grains < 1:
-        raise InputError(f"--min-grains {a.min_grains}: must be at least 1")
     cli.writable_file(a.json, "--json file")
     summary, at, xy, radii, contacts = snapshot_at(run, a.at)
     d = summary["B"] / summary["B_over_d"]

@@ -197,11 +197,12 @@ class Block:
 
     def damp_kinetic(self, st, kinetic):
         """--settle-damping kinetic: the soil's velocities set to zero whenever its kinetic
-        energy (`kinetic`, this chunk's) has passed a maximum (dynamic relaxation; their spins are left to the contacts:
-        this LIGGGHTS has no per-grain `set ... omega`). A block opened from its periodic
-        cell rings in its lowest vertical mode, which the contacts' damping hardly touches (the
-        B/d = 80 block still swung +-20 % of its load after 400 updates): each quench takes out
-        the energy of one swing, and what is left is the block's static state."""
+        energy (`kinetic`, this chunk's) has passed a maximum (dynamic relaxation; their spins
+        are left to the contacts: this LIGGGHTS has no per-grain `set ... omega`). A block
+        opened from its periodic cell rings in its lowest vertical mode, which the contacts'
+        damping hardly touches (the B/d = 80 block still swung +-20 % of its load after 400
+        updates): each quench takes out the energy of one swing, and what is left is the
+        block's static state."""
         if self.args.settle_damping != "kinetic":
             return
         if kinetic < st["last_kinetic"]:
