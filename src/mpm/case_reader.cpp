@@ -405,6 +405,22 @@ void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
   }
 }
 
+//! A footing's `contact` and, for `penalty`, its `penalty_stiffness` (docs/footing_contact.md).
+void read_footing_contact(const CaseNode& r, Footing& f) {
+  const bool penalty = r.choice_or("contact", {"nodes", "penalty"}, "nodes") == "penalty";
+  f.contact = penalty ? Footing::Contact::penalty : Footing::Contact::nodes;
+  if (!penalty) {
+    if (r.has("penalty_stiffness"))
+      r.fail("penalty_stiffness", "applies to \"contact\": \"penalty\" only");
+    return;
+  }
+  // Stable with the CFL step of the soil alone while sqrt(1 + stiffness) * cfl < 2.
+  f.penalty_stiffness = r.in_range_or("penalty_stiffness", 0.01, 2.0, 1.0);
+  if (f.keep_points_out)
+    r.fail("keep_points_out",
+           "a penalty contact keeps the points out by itself; this moves them every step");
+}
+
 void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
   if (!root.has("rigid_bodies"))
     return;
@@ -439,6 +455,7 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
     f.function = TimeFunction::read(r, "function");
     f.rough = r.choice("interface", {"rough", "smooth"}) == "rough";
     f.keep_points_out = r.get_or<bool>("keep_points_out", false);
+    read_footing_contact(r, f);
     c.footings.push_back(std::move(f));
   }
 }

@@ -58,8 +58,16 @@ struct Footing {
   double velocity = 0.0;       //!< downward speed times `function(t)` [m/s]
   TimeFunction function;
   bool rough = true;
-  //! Put points that enter the footing back on its nearest face (default off).
+  //! Put points that enter the footing back on its nearest face (default off; `nodes` only).
   bool keep_points_out = false;
+  //! How it acts on the soil: `nodes` holds the grid nodes at and above its base;
+  //! `penalty` presses on the points that overlap it, with a force from the overlap, so
+  //! that nothing it does depends on the time step (docs/footing_contact.md).
+  enum class Contact { nodes, penalty };
+  Contact contact = Contact::nodes;
+  //! `penalty`: the contact stiffness, in units of the stiffest material's wave modulus
+  //! per cell of overlap.
+  double penalty_stiffness = 1.0;
 };
 
 //! Material points filling a box, with an initial velocity.

@@ -1,5 +1,6 @@
 #include "mpm/checkpoint.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -29,6 +30,42 @@ std::vector<double> flatten(const std::vector<T>& values) {
   for (const T& v : values)
     out.insert(out.end(), v.data(), v.data() + T::SizeAtCompileTime);
   return out;
+}
+
+//! Where a penalty footing's anchors go (docs/footing_contact.md).
+std::string footing_anchors_name(std::size_t footing) {
+  return "footing" + std::to_string(footing) + "_anchors";
+}
+
+//! A penalty footing's anchors as (touching 0/1, position) per point: checkpoints hold finite
+//! values only, and a point that does not touch has no anchor (NaN in memory).
+template <class Vec>
+std::vector<double> flatten_anchors(const std::vector<Vec>& anchors, std::size_t points) {
+  std::vector<double> out;
+  for (std::size_t k = 0; k < points; ++k) {
+    const bool touching = k < anchors.size() && !std::isnan(anchors[k][0]);
+    out.push_back(touching ? 1.0 : 0.0);
+    for (int d = 0; d < Vec::SizeAtCompileTime; ++d)
+      out.push_back(touching ? anchors[k][d] : 0.0);
+  }
+  return out;
+}
+
+template <int D>
+std::vector<Eigen::Matrix<double, D, 1>> unflatten_anchors(const std::vector<double>& flat,
+                                                           std::size_t points,
+                                                           const std::string& what) {
+  if (flat.size() != points * (D + 1))
+    throw std::runtime_error("checkpoint: '" + what + "' does not match the case's points");
+  std::vector<Eigen::Matrix<double, D, 1>> anchors(points);
+  for (std::size_t k = 0; k < points; ++k) {
+    const double* row = flat.data() + k * (D + 1);
+    anchors[k] =
+        row[0] != 0.0
+            ? Eigen::Matrix<double, D, 1>(Eigen::Map<const Eigen::Matrix<double, D, 1>>(row + 1))
+            : Eigen::Matrix<double, D, 1>::Constant(std::nan(""));
+  }
+  return anchors;
 }
 
 template <class T>
@@ -116,6 +153,12 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
     footings.insert(footings.end(), f.reaction().data(), f.reaction().data() + D);
   }
   file.write("footings", footings);
+  for (std::size_t k = 0; k < solver.footings().size(); ++k) {
+    const RigidFooting<D>& f = solver.footings()[k];
+    if (!f.presses())
+      continue;
+    file.write(footing_anchors_name(k), flatten_anchors(f.anchors(), p.size()));
+  }
   file.set("format", CheckpointFolder::kFormat);
   file.set("time", solver.time());
   file.set("steps", static_cast<double>(solver.steps()));
@@ -223,6 +266,12 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
   for (std::size_t k = 0; k < rigid.size(); ++k) {
     const double* v = footings.data() + k * (2 + D);
     rigid[k].restore(v[0], v[1], Eigen::Map<const typename RigidFooting<D>::Vec>(v + 2));
+    if (!rigid[k].presses())
+      continue;
+    if (!file.has(footing_anchors_name(k)))
+      throw std::runtime_error("checkpoint '" + dir + "' does not match the case's footings");
+    rigid[k].restore_anchors(unflatten_anchors<D>(file.read(footing_anchors_name(k)), p.size(),
+                                                  footing_anchors_name(k)));
   }
   solver.restore_clock(file.get("time"), static_cast<long>(file.get("steps")));
   for (std::size_t m = 0; m < solver.materials().size(); ++m) {

@@ -6,13 +6,19 @@
 
 #include "mpm/case_spec.h"
 #include "mpm/grid.h"
+#include "mpm/particles.h"
 
 namespace mpm_lig::mpm {
 
 //! A rigid footing pushed down the last axis at a prescribed speed.
 //!
-//! It acts on the grid: nodes inside its footprint at or above its base take its velocity
-//! when the material there pushes against it (unilateral contact: the soil may move away,
+//! It acts through one of two contacts (the case's `contact`). `penalty` (`press`): every
+//! point whose box overlaps the footing is pushed out through the nearest face with a force
+//! proportional to the overlap, and a rough base holds each point it touches by a spring
+//! from where that point first touched it; the load is the sum of those forces, a function
+//! of positions alone, so it does not depend on the time step (docs/footing_contact.md).
+//! `nodes` (`apply`) acts on the grid: nodes inside its footprint at or above its base take its
+//! velocity when the material there pushes against it (unilateral contact: the soil may move away,
 //! never pull). The base moves continuously through the fixed grid, so the node row just
 //! below it is blended in with weight 1 - (base - y)/h: without this the load jumps every
 //! time the base crosses a node row. Likewise across the edges: a node takes the share of
@@ -26,7 +32,13 @@ class RigidFooting {
 
   RigidFooting(const Footing& spec, const Grid<D>& grid);
 
-  //! Impose the footing on `grid.velocity_new`; with `record`, store its reaction.
+  //! Whether it acts by the penalty contact (`press`), else by holding nodes (`apply`).
+  bool presses() const { return spec_.contact == Footing::Contact::penalty; }
+  //! Penalty contact: add the footing's force on each point it overlaps to
+  //! `particles.external_force` and store the load. `modulus` [Pa] sets the stiffness.
+  void press(Particles<D>& particles, const Vec& cell, double modulus);
+  //! Node contact: impose the footing on `grid.velocity_new`; with `record`, store its
+  //! reaction.
   void apply(Grid<D>& grid, double t, double scale, double dt, bool record);
   //! Move the base by one step.
   void advance(double t, double scale, double dt);
@@ -56,6 +68,10 @@ class RigidFooting {
     load_ = load;
     reaction_ = reaction;
   }
+  //! Penalty contact, rough base: per point, where it first touched the base (NaN in the
+  //! first component while it does not touch); empty before the first `press`.
+  const std::vector<Vec>& anchors() const { return anchors_; }
+  void restore_anchors(std::vector<Vec> anchors) { anchors_ = std::move(anchors); }
   //! Footprint area inside the mesh (its width in 2D) [m^(D-1)].
   double contact_area() const { return area_; }
 
@@ -67,6 +83,7 @@ class RigidFooting {
   double settlement_ = 0.0;
   double load_ = 0.0;
   Vec reaction_ = Vec::Zero();
+  std::vector<Vec> anchors_;
 };
 
 }  // namespace mpm_lig::mpm

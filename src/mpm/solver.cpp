@@ -95,6 +95,8 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
       mass_scaling_(c.mass_scaling) {
   for (const Footing& f : c.footings)
     footings_.emplace_back(f, grid_);
+  for (std::size_t m = 0; m < materials_.size(); ++m)
+    contact_modulus_ = std::max(contact_modulus_, materials_[m]->wave_modulus());
   traction_points_.resize(tractions_.size());
   for (std::size_t k = 0; k < tractions_.size(); ++k) {
     for (std::size_t p = 0; p < particles_.size(); ++p) {
@@ -265,6 +267,10 @@ void Solver<D>::compute_external_forces() {
       particles_.external_force[p] += area * t;
     }
   }
+  for (auto& f : footings_) {
+    if (f.presses())
+      f.press(particles_, grid_.cell(), contact_modulus_);
+  }
 }
 
 template <int D>
@@ -322,8 +328,10 @@ void Solver<D>::update_grid() {
 
 template <int D>
 void Solver<D>::apply_boundary_conditions(bool record) {
-  for (auto& f : footings_)
-    f.apply(grid_, time_, prescribed_scale_, dt_, record);
+  for (auto& f : footings_) {
+    if (!f.presses())
+      f.apply(grid_, time_, prescribed_scale_, dt_, record);
+  }
   constraints_.apply(grid_, time_, prescribed_scale_, dt_, record);
 }
 

@@ -114,6 +114,8 @@ class Solver {
   double damping_;
   double case_damping_;
   double mass_scaling_;
+  //! The stiffest material's wave modulus [Pa]: the scale of a penalty footing's stiffness.
+  double contact_modulus_ = 0.0;
   double prescribed_scale_ = 1.0;  // 0 in the gravity stage
 
   double dt_ = 0.0;

@@ -1,0 +1,79 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "mpm/footing.h"
+
+namespace mpm_lig::mpm {
+
+namespace {
+
+constexpr double kNoAnchor = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+template <int D>
+void RigidFooting<D>::press(Particles<D>& particles, const Vec& cell, double modulus) {
+  constexpr int up = D - 1;
+  const double stiffness = spec_.penalty_stiffness * modulus;
+  const double base_now = base();
+  if (anchors_.size() != particles.size())
+    anchors_.assign(particles.size(), Vec::Constant(kNoAnchor));
+  Vec reaction = Vec::Zero();
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const Vec& x = particles.position[p];
+    const Vec half = particles.half_length[p].cwiseProduct(cell);
+    // How far the point's box reaches into the footing through its base, how much of it
+    // lies under the footprint along each horizontal axis, and the shortest way out through
+    // a side face.
+    const double through_base = x[up] + half[up] - base_now;
+    std::array<double, D> overlap{};
+    double under = 1.0;
+    double through_side = std::numeric_limits<double>::max();
+    int side = 0;
+    for (int d = 0; d < up; ++d) {
+      const double lo = spec_.center[d] - 0.5 * spec_.width[d];
+      const double hi = spec_.center[d] + 0.5 * spec_.width[d];
+      overlap[d] = std::max(0.0, std::min(x[d] + half[d], hi) - std::max(x[d] - half[d], lo));
+      under *= overlap[d];
+      const double out = x[d] >= spec_.center[d] ? hi - (x[d] - half[d]) : x[d] + half[d] - lo;
+      if (out < through_side) {
+        through_side = out;
+        side = d;
+      }
+    }
+    Vec& anchor = anchors_[p];
+    if (through_base <= 0.0 || under <= 0.0) {
+      anchor[0] = kNoAnchor;
+      continue;
+    }
+    // A pressure of stiffness x overlap / cell on the face of the box it pushes.
+    Vec f = Vec::Zero();
+    if (through_base <= through_side) {
+      f[up] = -stiffness * through_base / cell[up] * under;
+      if (spec_.rough) {
+        if (std::isnan(anchor[0]))
+          anchor = x;
+        for (int d = 0; d < up; ++d)
+          f[d] = -stiffness * (x[d] - anchor[d]) / cell[up] * under;
+      }
+    } else {
+      anchor[0] = kNoAnchor;
+      double face = std::min(through_base, 2.0 * half[up]);
+      for (int d = 0; d < up; ++d)
+        face *= d == side ? 1.0 : overlap[d];
+      const double outward = x[side] >= spec_.center[side] ? 1.0 : -1.0;
+      f[side] = outward * stiffness * through_side / cell[side] * face;
+    }
+    particles.external_force[p] += f;
+    reaction += f;
+  }
+  load_ = -reaction[up];
+  reaction_ = reaction;
+}
+
+template void RigidFooting<2>::press(Particles<2>&, const Eigen::Vector2d&, double);
+template void RigidFooting<3>::press(Particles<3>&, const Eigen::Vector3d&, double);
+
+}  // namespace mpm_lig::mpm
