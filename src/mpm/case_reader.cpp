@@ -410,12 +410,15 @@ void read_footing_contact(const CaseNode& r, Footing& f) {
   const bool penalty = r.choice_or("contact", {"nodes", "penalty"}, "nodes") == "penalty";
   f.contact = penalty ? Footing::Contact::penalty : Footing::Contact::nodes;
   if (!penalty) {
-    if (r.has("penalty_stiffness"))
-      r.fail("penalty_stiffness", "applies to \"contact\": \"penalty\" only");
+    for (const char* key : {"penalty_stiffness", "penalty_edge_inset"}) {
+      if (r.has(key))
+        r.fail(key, "applies to \"contact\": \"penalty\" only");
+    }
     return;
   }
   // Stable with the CFL step of the soil alone while sqrt(1 + stiffness) * cfl < 2.
   f.penalty_stiffness = r.in_range_or("penalty_stiffness", 0.01, 2.0, 1.0);
+  f.penalty_edge_inset = r.get_or<bool>("penalty_edge_inset", true);
   if (f.keep_points_out)
     r.fail("keep_points_out",
            "a penalty contact keeps the points out by itself; this moves them every step");

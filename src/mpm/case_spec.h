@@ -68,6 +68,10 @@ struct Footing {
   //! `penalty`: the contact stiffness, in units of the stiffest material's wave modulus
   //! per cell of overlap.
   double penalty_stiffness = 1.0;
+  //! `penalty`: press the points under the footprint less half a cell at each edge inside
+  //! the mesh (the grid carries a pressed point's force half a cell beyond its box, so the
+  //! whole footprint acts as a footing one cell wider); false: the whole footprint.
+  bool penalty_edge_inset = true;
 };
 
 //! Material points filling a box, with an initial velocity.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mpm_lig::mpm {
 
@@ -13,6 +14,12 @@ RigidFooting<D>::RigidFooting(const Footing& spec, const Grid<D>& grid) : spec_(
     const double hi =
         std::min(spec.center[d] + 0.5 * spec.width[d], grid.origin()[d] + grid.size()[d]);
     area_ *= hi - lo;
+    // An edge on a mesh face (a half model's symmetry plane) is no edge: nothing leaves
+    // through it, so it lies at infinity for the penalty contact.
+    const double inset = spec.penalty_edge_inset ? 0.5 * grid.cell()[d] : 0.0;
+    constexpr double far = std::numeric_limits<double>::infinity();
+    pressed_lo_[d] = lo > grid.origin()[d] + tol ? lo + inset : -far;
+    pressed_hi_[d] = hi < grid.origin()[d] + grid.size()[d] - tol ? hi - inset : far;
   }
   for (long id = 0; id < static_cast<long>(grid.node_count()); ++id) {
     const Vec x = grid.node_position(id);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -84,6 +85,9 @@ class RigidFooting {
   double load_ = 0.0;
   Vec reaction_ = Vec::Zero();
   std::vector<Vec> anchors_;
+  // The span the penalty contact presses along each horizontal axis: the footprint, less
+  // half a cell at each edge inside the mesh with `penalty_edge_inset`.
+  std::array<double, D> pressed_lo_{}, pressed_hi_{};
 };
 
 }  // namespace mpm_lig::mpm

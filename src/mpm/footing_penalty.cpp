@@ -32,15 +32,16 @@ void RigidFooting<D>::press(Particles<D>& particles, const Vec& cell, double mod
     double under = 1.0;
     double through_side = std::numeric_limits<double>::max();
     int side = 0;
+    double outward = 1.0;
     for (int d = 0; d < up; ++d) {
-      const double lo = spec_.center[d] - 0.5 * spec_.width[d];
-      const double hi = spec_.center[d] + 0.5 * spec_.width[d];
+      const double lo = pressed_lo_[d], hi = pressed_hi_[d];
       overlap[d] = std::max(0.0, std::min(x[d] + half[d], hi) - std::max(x[d] - half[d], lo));
       under *= overlap[d];
-      const double out = x[d] >= spec_.center[d] ? hi - (x[d] - half[d]) : x[d] + half[d] - lo;
-      if (out < through_side) {
-        through_side = out;
+      const double out_lo = x[d] + half[d] - lo, out_hi = hi - (x[d] - half[d]);
+      if (std::min(out_lo, out_hi) < through_side) {
+        through_side = std::min(out_lo, out_hi);
         side = d;
+        outward = out_hi <= out_lo ? 1.0 : -1.0;
       }
     }
     Vec& anchor = anchors_[p];
@@ -63,7 +64,6 @@ void RigidFooting<D>::press(Particles<D>& particles, const Vec& cell, double mod
       double face = std::min(through_base, 2.0 * half[up]);
       for (int d = 0; d < up; ++d)
         face *= d == side ? 1.0 : overlap[d];
-      const double outward = x[side] >= spec_.center[side] ? 1.0 : -1.0;
       f[side] = outward * stiffness * through_side / cell[side] * face;
     }
     particles.external_force[p] += f;

@@ -1,6 +1,7 @@
 // Strip footings against bearing-capacity theory, and robustness at large penetration.
 // Each runs its case from cases/mpm as is (only field output switched off).
 #include <cmath>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -195,7 +196,7 @@ TEST(Footing, KeepPointsOutStopsTheBaseOvertakingPoints) {
 TEST(Footing, ThreeDimensionalSlabMatchesPlaneStrain) {
   // The strip footing on Tresca soil (coarse, h = B/10, to d/B = 0.03) in 2D, and in 3D as a
   // one-cell slab with rollers on its faces y- and y+: the same plane-strain problem, so the
-  // same load curve (3D shape functions, constraints and footing cross-checked).
+  // same load curve (3D shape functions, constraints and both footing contacts cross-checked).
   auto coarse = [](nlohmann::json& j) {
     j["output"]["fields"] = false;
     j["analysis"]["end"]["time"] = 0.3;
@@ -219,22 +220,30 @@ TEST(Footing, ThreeDimensionalSlabMatchesPlaneStrain) {
     j["rigid_bodies"][0]["center"] = {0.0, 0.05};
     j["rigid_bodies"][0]["width"] = {1.0, 0.1};
   };
-  std::vector<double> q2, q3;
-  MpmProblem c2 = testing::load_case("prandtl_tresca", coarse);
-  run_case<2>(std::move(c2), "", [&](const Solver<2>& s) {
-    q2.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
-  });
-  MpmProblem c3 = testing::load_case("prandtl_tresca", slab);
-  run_case<3>(std::move(c3), "", [&](const Solver<3>& s) {
-    q3.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
-  });
-  ASSERT_EQ(q2.size(), q3.size());
-  double worst = 0.0;
-  for (std::size_t k = 0; k < q2.size(); ++k)
-    worst = std::max(worst, std::abs(q3[k] - q2[k]));
-  std::printf("3D slab vs 2D: max |q3 - q2| = %.3e c_u, q2(end) = %.4f c_u\n", worst / 1.0e4,
-              q2.back() / 1.0e4);
-  EXPECT_LT(worst, 1e-6 * q2.back());
+  for (const std::string contact : {"nodes", "penalty"}) {
+    auto with_contact = [&](auto shape) {
+      return [=](nlohmann::json& j) {
+        shape(j);
+        j["rigid_bodies"][0]["contact"] = contact;
+      };
+    };
+    std::vector<double> q2, q3;
+    MpmProblem c2 = testing::load_case("prandtl_tresca", with_contact(coarse));
+    run_case<2>(std::move(c2), "", [&](const Solver<2>& s) {
+      q2.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
+    });
+    MpmProblem c3 = testing::load_case("prandtl_tresca", with_contact(slab));
+    run_case<3>(std::move(c3), "", [&](const Solver<3>& s) {
+      q3.push_back(s.footings()[0].load() / s.footings()[0].contact_area());
+    });
+    ASSERT_EQ(q2.size(), q3.size());
+    double worst = 0.0;
+    for (std::size_t k = 0; k < q2.size(); ++k)
+      worst = std::max(worst, std::abs(q3[k] - q2[k]));
+    std::printf("%s contact, 3D slab vs 2D: max |q3 - q2| = %.3e c_u, q2(end) = %.4f c_u\n",
+                contact.c_str(), worst / 1.0e4, q2.back() / 1.0e4);
+    EXPECT_LT(worst, 1e-6 * q2.back());
+  }
 }
 
 }  // namespace

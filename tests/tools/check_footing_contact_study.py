@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Checks of tools/footing_contact_study.py --quick: Prandtl on B/4 and B/8 with both contacts
-at CFL 0.5 and 0.25. The penalty rows must give the same q_u at both steps (ratio within
-0.002) and lie above the node rows (its coarse-mesh error is from above); the JSON holds every
-run with its history; a second call reuses the runs; a missing mpm_lig is named.
+at CFL 0.5 and 0.25. The penalty rows (edges inset, and the whole footprint) must give the
+same q_u at both steps (ratio within 0.002), the whole footprint's above the inset one's; the
+JSON holds every run with its history; a second call reuses the runs; a missing mpm_lig is named.
 
 usage: check_footing_contact_study.py MPM_LIG WORK
 """
@@ -36,19 +36,21 @@ def main():
         fail(f"exit {r.returncode}: {r.stderr}")
     print(r.stdout)
     rows = [line.split("|")[1:-1] for line in r.stdout.splitlines() if line.startswith("| prandtl")]
-    if len(rows) != 4:
-        fail(f"expected 4 rows (B/4, B/8 x nodes, penalty), got {len(rows)}")
+    if len(rows) != 6:
+        fail(f"expected 6 rows (B/4, B/8 x three contacts), got {len(rows)}")
     by = {(m.strip(), c.strip()): (float(h), float(q), float(ratio))
           for _, m, c, h, q, ratio in rows}
     for mesh in ("B/4", "B/8"):
-        half, _, ratio = by[(mesh, "penalty")]
-        if abs(ratio - 1.0) > 0.002:
-            fail(f"{mesh}: the penalty contact's q_u moved by {ratio - 1:+.4f} with the step")
-        if half <= by[(mesh, "nodes")][0]:
-            fail(f"{mesh}: the penalty contact's q_u {half} is not above the node contact's")
+        for contact in ("penalty", "penalty, whole footprint"):
+            half, _, ratio = by[(mesh, contact)]
+            if abs(ratio - 1.0) > 0.002:
+                fail(f"{mesh}, {contact}: q_u moved by {ratio - 1:+.4f} with the step")
+        # Pressing the whole footprint acts as a footing a cell wider: above the inset one.
+        if by[(mesh, "penalty, whole footprint")][0] <= by[(mesh, "penalty")][0]:
+            fail(f"{mesh}: the whole footprint's q_u is not above the inset one's")
     with open(out) as f:
         runs = json.load(f)["runs"]
-    if len(runs) != 8 or any(len(r["history_s_q"]) < 20 for r in runs):
+    if len(runs) != 12 or any(len(r["history_s_q"]) < 20 for r in runs):
         fail(f"the JSON holds {len(runs)} runs or short histories")
     again = study(mpm_lig, os.path.join(work, "runs"))
     if again.returncode != 0 or again.stdout != r.stdout:
@@ -58,7 +60,7 @@ def main():
         fail(f"a missing mpm_lig: exit {missing.returncode}, {missing.stderr!r}")
     if os.path.exists(os.path.join(work, "other")):
         fail("a refused call created its work folder")
-    print("footing_contact_study: penalty step-independent, above the nodes, runs reused")
+    print("footing_contact_study: penalty step-independent, whole footprint above inset, runs reused")
 
 
 if __name__ == "__main__":

@@ -4,8 +4,8 @@ usage: footing_contact_study.py WORK [--mpm-lig PATH] [--json FILE] [--quick]
 
 Runs cases/mpm/prandtl_tresca_penalty.json (rough, Tresca: q_u = (2 + pi) c_u) on meshes of
 h = B/4, B/8, B/20 (the case's) and B/40, and cases/mpm/vesic_mohr_coulomb.json (rough,
-phi 28.1 deg, psi 0: q_u = N_q q0, h = B/10), each with "contact": "nodes" and "penalty", at
-CFL 0.5 and 0.25 (B/40 at 0.5 only), into WORK (runs already there are reused). Prints a
+phi 28.1 deg, psi 0: q_u = N_q q0, h = B/10), each with "contact": "nodes", "penalty" and
+"penalty" pressing the whole footprint ("penalty_edge_inset": false), at CFL 0.5 and 0.25 (B/40 at 0.5 only), into WORK (runs already there are reused). Prints a
 markdown table of q_u over its closed form, q_u the mean over d/B 0.015-0.03 as in the footing
 tests; --json writes it with every fifth history row of each run (docs/footing_contact.md).
 --quick: Prandtl on B/4 and B/8 only.
@@ -42,8 +42,14 @@ def vesic(contact, cfl):
     return set_up(case, contact, cfl), nq * 1.0e4
 
 
+# The contacts compared: the case keys of each.
+CONTACTS = {"nodes": {"contact": "nodes"},
+            "penalty": {"contact": "penalty"},
+            "penalty, whole footprint": {"contact": "penalty", "penalty_edge_inset": False}}
+
+
 def set_up(case, contact, cfl):
-    case["rigid_bodies"][0]["contact"] = contact
+    case["rigid_bodies"][0].update(CONTACTS[contact])
     case["analysis"]["time_step"]["cfl"] = cfl
     case["analysis"]["end"]["time"] = 0.31  # d/B 0.031 at 0.1 m/s
     case["output"] = {"fields": False, "every": 1000}
@@ -77,11 +83,11 @@ def plans(quick):
     """(problem, mesh, contact, cfl, case, exact) of every run."""
     out = []
     for n in (4, 8) if quick else (4, 8, 20, 40):
-        for contact in ("nodes", "penalty"):
+        for contact in CONTACTS:
             for cfl in (0.5, 0.25) if n <= 20 else (0.5,):
                 out.append(("prandtl", f"B/{n}", contact, cfl, *prandtl(contact, cfl, n)))
     if not quick:
-        for contact in ("nodes", "penalty"):
+        for contact in CONTACTS:
             for cfl in (0.5, 0.25):
                 out.append(("vesic", "B/10", contact, cfl, *vesic(contact, cfl)))
     return out
@@ -116,7 +122,8 @@ def main():
     os.makedirs(a.work, exist_ok=True)
     results = []
     for problem, mesh, contact, cfl, case, exact in plans(a.quick):
-        name = f"{problem}_{mesh.replace('/', '')}_{contact}_cfl{cfl:g}"
+        label = contact.replace(", whole footprint", "_footprint")
+        name = f"{problem}_{mesh.replace('/', '')}_{label}_cfl{cfl:g}"
         q, rows = run(mpm_lig, a.work, name, case)
         results.append({"problem": problem, "mesh": mesh, "contact": contact, "cfl": cfl,
                         "q_over_exact": q / exact,
