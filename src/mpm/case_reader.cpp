@@ -405,8 +405,9 @@ void read_boundary_conditions(const CaseNode& root, MpmCase& c) {
   }
 }
 
-//! A footing's `contact` and, for `penalty`, its `penalty_stiffness` (docs/footing_contact.md).
-void read_footing_contact(const CaseNode& r, Footing& f) {
+//! A footing's `contact` and, for `penalty`, its `penalty_stiffness` and
+//! `penalty_edge_inset` (docs/footing_contact.md).
+void read_footing_contact(const CaseNode& r, const MpmCase& c, Footing& f) {
   const bool penalty = r.choice_or("contact", {"nodes", "penalty"}, "nodes") == "penalty";
   f.contact = penalty ? Footing::Contact::penalty : Footing::Contact::nodes;
   if (!penalty) {
@@ -419,6 +420,18 @@ void read_footing_contact(const CaseNode& r, Footing& f) {
   // Stable with the CFL step of the soil alone while sqrt(1 + stiffness) * cfl < 2.
   f.penalty_stiffness = r.in_range_or("penalty_stiffness", 0.01, 2.0, 1.0);
   f.penalty_edge_inset = r.get_or<bool>("penalty_edge_inset", true);
+  for (int d = 0; f.penalty_edge_inset && d + 1 < c.dimension; ++d) {
+    // The pressed span: the footprint inside the mesh less half a cell at each inner edge.
+    const double cell = c.size[d] / c.cells[d], end = c.origin[d] + c.size[d];
+    const double lo = std::max(f.center[d] - 0.5 * f.width[d], c.origin[d]);
+    const double hi = std::min(f.center[d] + 0.5 * f.width[d], end);
+    const int edges = (lo > c.origin[d] + 1e-9 * cell) + (hi < end - 1e-9 * cell);
+    if (hi - lo - 0.5 * cell * edges <= 1e-9 * cell)
+      r.fail("width",
+             "the penalty contact presses the footprint less half a cell at each edge "
+             "inside the mesh, and this footing is too narrow for that: it would press "
+             "nothing (refine the mesh, or \"penalty_edge_inset\": false)");
+  }
   if (f.keep_points_out)
     r.fail("keep_points_out",
            "a penalty contact keeps the points out by itself; this moves them every step");
@@ -458,7 +471,7 @@ void read_rigid_bodies(const CaseNode& root, MpmCase& c) {
     f.function = TimeFunction::read(r, "function");
     f.rough = r.choice("interface", {"rough", "smooth"}) == "rough";
     f.keep_points_out = r.get_or<bool>("keep_points_out", false);
-    read_footing_contact(r, f);
+    read_footing_contact(r, c, f);
     c.footings.push_back(std::move(f));
   }
 }

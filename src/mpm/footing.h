@@ -14,13 +14,14 @@ namespace mpm_lig::mpm {
 //! A rigid footing pushed down the last axis at a prescribed speed.
 //!
 //! It acts through one of two contacts (the case's `contact`). `penalty` (`press`): every
-//! point whose box overlaps the footing is pushed out through the nearest face with a force
-//! proportional to the overlap, and a rough base holds each point it touches by a spring
-//! from where that point first touched it; the load is the sum of those forces, a function
-//! of positions alone, so it does not depend on the time step (docs/footing_contact.md).
-//! `nodes` (`apply`) acts on the grid: nodes inside its footprint at or above its base take its
-//! velocity when the material there pushes against it (unilateral contact: the soil may move away,
-//! never pull). The base moves continuously through the fixed grid, so the node row just
+//! point whose box overlaps the footing (its footprint less half a cell at each edge inside
+//! the mesh, by default) is pushed out through the nearest face with a force proportional to
+//! the overlap, and a rough base holds each point it touches by a spring from where that
+//! point first touched it; the load is the sum of those forces, a function of positions
+//! alone, so it does not depend on the time step (docs/footing_contact.md).
+//! `nodes` (`apply`) acts on the grid: nodes inside its footprint at or above its base take
+//! its velocity when the material there pushes against it (unilateral contact: the soil may
+//! move away, never pull). The base moves continuously through the fixed grid, so the node row just
 //! below it is blended in with weight 1 - (base - y)/h: without this the load jumps every
 //! time the base crosses a node row. Likewise across the edges: a node takes the share of
 //! its tributary width [x - h/2, x + h/2] that lies under the footing (1/2 at an edge on a
