@@ -6,6 +6,7 @@
 
 #include "mpm/case_size.h"
 #include "mpm/case_spec.h"
+#include "mpm/footing.h"
 #include "mpm/shape_function.h"
 
 namespace mpm_lig::mpm {
@@ -421,12 +422,10 @@ void read_footing_contact(const CaseNode& r, const MpmCase& c, Footing& f) {
   f.penalty_stiffness = r.in_range_or("penalty_stiffness", 0.01, 2.0, 1.0);
   f.penalty_edge_inset = r.get_or<bool>("penalty_edge_inset", true);
   for (int d = 0; f.penalty_edge_inset && d + 1 < c.dimension; ++d) {
-    // The pressed span: the footprint inside the mesh less half a cell at each inner edge.
-    const double cell = c.size[d] / c.cells[d], end = c.origin[d] + c.size[d];
-    const double lo = std::max(f.center[d] - 0.5 * f.width[d], c.origin[d]);
-    const double hi = std::min(f.center[d] + 0.5 * f.width[d], end);
-    const int edges = (lo > c.origin[d] + 1e-9 * cell) + (hi < end - 1e-9 * cell);
-    if (hi - lo - 0.5 * cell * edges <= 1e-9 * cell)
+    const double cell = c.size[d] / c.cells[d];
+    const FootingSpan span =
+        footing_span(f.center[d], f.width[d], c.origin[d], c.size[d], 0.5 * cell, 1e-9 * cell);
+    if (!span.presses(1e-9 * cell))
       r.fail("width",
              "the penalty contact presses the footprint less half a cell at each edge "
              "inside the mesh, and this footing is too narrow for that: it would press "

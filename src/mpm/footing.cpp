@@ -6,20 +6,27 @@
 
 namespace mpm_lig::mpm {
 
+FootingSpan footing_span(double center, double width, double origin, double size, double inset,
+                         double tol) {
+  constexpr double far = std::numeric_limits<double>::infinity();
+  FootingSpan s;
+  s.lo = std::max(center - 0.5 * width, origin);
+  s.hi = std::min(center + 0.5 * width, origin + size);
+  s.pressed_lo = s.lo > origin + tol ? s.lo + inset : -far;
+  s.pressed_hi = s.hi < origin + size - tol ? s.hi - inset : far;
+  return s;
+}
+
 template <int D>
 RigidFooting<D>::RigidFooting(const Footing& spec, const Grid<D>& grid) : spec_(spec) {
   const double tol = 1e-9 * grid.min_cell();
   for (int d = 0; d < D - 1; ++d) {
-    const double lo = std::max(spec.center[d] - 0.5 * spec.width[d], grid.origin()[d]);
-    const double hi =
-        std::min(spec.center[d] + 0.5 * spec.width[d], grid.origin()[d] + grid.size()[d]);
-    area_ *= hi - lo;
-    // An edge on a mesh face (a half model's symmetry plane) is no edge: nothing leaves
-    // through it, so it lies at infinity for the penalty contact.
     const double inset = spec.penalty_edge_inset ? 0.5 * grid.cell()[d] : 0.0;
-    constexpr double far = std::numeric_limits<double>::infinity();
-    pressed_lo_[d] = lo > grid.origin()[d] + tol ? lo + inset : -far;
-    pressed_hi_[d] = hi < grid.origin()[d] + grid.size()[d] - tol ? hi - inset : far;
+    const FootingSpan span =
+        footing_span(spec.center[d], spec.width[d], grid.origin()[d], grid.size()[d], inset, tol);
+    area_ *= span.hi - span.lo;
+    pressed_lo_[d] = span.pressed_lo;
+    pressed_hi_[d] = span.pressed_hi;
   }
   for (long id = 0; id < static_cast<long>(grid.node_count()); ++id) {
     const Vec x = grid.node_position(id);

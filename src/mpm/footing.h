@@ -11,6 +11,22 @@
 
 namespace mpm_lig::mpm {
 
+//! Along one horizontal axis: the footprint [center - width/2, center + width/2] clipped to
+//! the mesh [origin, origin + size], and the span the penalty contact presses, the clipped
+//! footprint less `inset` at each edge inside the mesh. An edge on a mesh face (a half
+//! model's symmetry plane) is no edge: nothing leaves through it, so the pressed span's end
+//! lies at infinity there.
+struct FootingSpan {
+  double lo, hi;                  // the clipped footprint
+  double pressed_lo, pressed_hi;  // the pressed span (+-infinity at a mesh face)
+  //! Whether the pressed span holds any of the mesh (within `tol`).
+  bool presses(double tol) const {
+    return std::min(pressed_hi, hi) - std::max(pressed_lo, lo) > tol;
+  }
+};
+FootingSpan footing_span(double center, double width, double origin, double size, double inset,
+                         double tol);
+
 //! A rigid footing pushed down the last axis at a prescribed speed.
 //!
 //! It acts through one of two contacts (the case's `contact`). `penalty` (`press`): every
