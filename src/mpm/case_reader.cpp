@@ -412,7 +412,7 @@ void read_footing_contact(const CaseNode& r, const MpmCase& c, Footing& f) {
   const bool penalty = r.choice_or("contact", {"nodes", "penalty"}, "nodes") == "penalty";
   f.contact = penalty ? Footing::Contact::penalty : Footing::Contact::nodes;
   if (!penalty) {
-    for (const char* key : {"penalty_stiffness", "penalty_edge_inset"}) {
+    for (const char* key : {"penalty_stiffness", "penalty_edge_inset", "interface_friction_deg"}) {
       if (r.has(key))
         r.fail(key, "applies to \"contact\": \"penalty\" only");
     }
@@ -421,6 +421,9 @@ void read_footing_contact(const CaseNode& r, const MpmCase& c, Footing& f) {
   // Stable with the CFL step of the soil alone while sqrt(1 + stiffness) * cfl < 2.
   f.penalty_stiffness = r.in_range_or("penalty_stiffness", 0.01, 2.0, 1.0);
   f.penalty_edge_inset = r.get_or<bool>("penalty_edge_inset", true);
+  if (r.has("interface_friction_deg") && !f.rough)
+    r.fail("interface_friction_deg", "applies to \"interface\": \"rough\" only");
+  f.interface_friction_deg = r.in_range_or("interface_friction_deg", 0.0, 90.0, 90.0);
   for (int d = 0; f.penalty_edge_inset && d + 1 < c.dimension; ++d) {
     const double cell = c.size[d] / c.cells[d];
     const FootingSpan span =

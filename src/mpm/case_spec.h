@@ -72,6 +72,9 @@ struct Footing {
   //! the mesh (the grid carries a pressed point's force half a cell beyond its box, so the
   //! whole footprint acts as a footing one cell wider); false: the whole footprint.
   bool penalty_edge_inset = true;
+  //! `penalty`, rough base: the interface friction angle δ [deg]; a touching point's hold
+  //! slides once it would pass tan δ × its normal force. 90: no limit (full adhesion).
+  double interface_friction_deg = 90.0;
 };
 
 //! Material points filling a box, with an initial velocity.

@@ -105,6 +105,8 @@ class RigidFooting {
   // The span the penalty contact presses along each horizontal axis: the footprint, less
   // half a cell at each edge inside the mesh with `penalty_edge_inset`.
   std::array<double, D> pressed_lo_{}, pressed_hi_{};
+
+  void slide_past_friction_limit(Vec& f, const Vec& x, Vec& anchor) const;
 };
 
 }  // namespace mpm_lig::mpm

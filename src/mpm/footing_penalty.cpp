@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/tensor.h"
 #include "mpm/footing.h"
 
 namespace mpm_lig::mpm {
@@ -12,6 +13,25 @@ namespace {
 constexpr double kNoAnchor = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
+
+// Coulomb's limit on the rough base's hold: where the spring's tangential force would pass
+// tan δ × the normal force, the anchor follows the point so that it sits on the limit
+// (the point slides along the base).
+template <int D>
+void RigidFooting<D>::slide_past_friction_limit(Vec& f, const Vec& x, Vec& anchor) const {
+  constexpr int up = D - 1;
+  if (spec_.interface_friction_deg >= 90.0)
+    return;
+  const double limit = std::tan(spec_.interface_friction_deg * kDegree) * std::abs(f[up]);
+  const double tangential = f.head(up).norm();
+  if (tangential <= limit)
+    return;
+  const double keep = limit / tangential;
+  for (int d = 0; d < up; ++d) {
+    f[d] *= keep;
+    anchor[d] = x[d] - keep * (x[d] - anchor[d]);
+  }
+}
 
 template <int D>
 void RigidFooting<D>::press(Particles<D>& particles, const Vec& cell, double modulus) {
@@ -58,6 +78,7 @@ void RigidFooting<D>::press(Particles<D>& particles, const Vec& cell, double mod
           anchor = x;
         for (int d = 0; d < up; ++d)
           f[d] = -stiffness * (x[d] - anchor[d]) / cell[up] * under;
+        slide_past_friction_limit(f, x, anchor);
       }
     } else {
       anchor[0] = kNoAnchor;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/tensor.h"
 #include "mpm/driver.h"
 #include "mpm/footing.h"
 #include "mpm/grid.h"
@@ -83,6 +84,43 @@ TEST(PenaltyFooting, PressesEachPointByItsOverlap) {
   inset.press(q, cell, k);
   EXPECT_EQ(q.external_force[0], Eigen::Vector2d::Zero());
   EXPECT_NEAR(q.external_force[1][1], -k * into / 0.05 * (0.375 - (0.37 - half)), 1e-6);
+}
+
+TEST(PenaltyFooting, RoughBaseHoldsUpToItsFrictionAngle) {
+  // δ = 20°: a point 2.5 mm into the base is held by its spring while the spring's pull stays
+  // below tan δ × the normal force, and slides once it would pass it, its anchor following.
+  const Grid<2> grid(Eigen::Vector2d(0, 0), Eigen::Vector2d(0.6, 0.7), {12, 14});
+  Footing spec = penalty_footing(0.3);
+  spec.interface_friction_deg = 20.0;
+  RigidFooting<2> footing(spec, grid);
+  const Eigen::Vector2d cell(0.05, 0.05);
+  const double k = 1e8, half = 0.0125, into = 0.59 + half - 0.6;
+  const double normal = k * into / 0.05 * 2 * half, limit = std::tan(20.0 * kDegree) * normal;
+  Particles<2> p = points_at({{0.3, 0.59}});
+  footing.press(p, cell, k);
+  const auto pressed_after = [&](double dx) {
+    p.position[0][0] += dx;
+    p.external_force[0].setZero();
+    footing.press(p, cell, k);
+    return p.external_force[0];
+  };
+  // tan 20° × 2.5 mm = 0.91 mm of spring: 0.5 mm is held, 3 mm slides.
+  EXPECT_NEAR(pressed_after(0.0005)[0], -k * 0.0005 / 0.05 * 2 * half, 1e-6);
+  EXPECT_NEAR(pressed_after(0.0025)[0], -limit, 1e-6);
+  EXPECT_NEAR(pressed_after(0.0)[1], -normal, 1e-6);
+  EXPECT_NEAR(p.position[0][0] - footing.anchors()[0][0], std::tan(20.0 * kDegree) * into, 1e-12);
+  // Back 0.5 mm: the spring unloads from the limit, held again where the point slid to.
+  EXPECT_NEAR(pressed_after(-0.0005)[0],
+              -k * (std::tan(20.0 * kDegree) * into - 0.0005) / 0.05 * 2 * half, 1e-6);
+  // Without a friction angle (90°: the default) the same path is held all the way.
+  spec.interface_friction_deg = 90.0;
+  RigidFooting<2> adhesive(spec, grid);
+  Particles<2> q = points_at({{0.3, 0.59}});
+  adhesive.press(q, cell, k);
+  q.position[0][0] += 0.003;
+  q.external_force[0].setZero();
+  adhesive.press(q, cell, k);
+  EXPECT_NEAR(q.external_force[0][0], -k * 0.003 / 0.05 * 2 * half, 1e-6);
 }
 
 TEST(PenaltyFooting, AHalfModelsSymmetryFaceIsNoEdge) {
