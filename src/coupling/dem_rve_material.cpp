@@ -109,6 +109,19 @@ double DemRveMaterial::wave_modulus() const {
   return m;
 }
 
+double DemRveMaterial::current_wave_modulus() const {
+  double p_max = 0.0;
+  for (const Mat3& sigma : results_.stress)
+    p_max = std::max(p_max, mean_pressure(sigma, spec_.dimension));
+  double m = 0.0;
+  for (const Packing& p : packings_) {
+    const double probed_at = mean_pressure(p.stress, spec_.dimension);
+    const double ratio = probed_at > 0.0 ? std::max(1.0, p_max / probed_at) : 1.0;
+    m = std::max(m, p.wave_modulus * std::cbrt(ratio));
+  }
+  return m;
+}
+
 std::size_t DemRveMaterial::add_points(std::size_t count) {
   if (rves_ && rves_->dealt())
     throw std::logic_error(path_ + ": points added after the first update");

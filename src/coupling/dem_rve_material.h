@@ -43,6 +43,9 @@ class DemRveMaterial final : public materials::Material, public materials::Micro
                  MemoryBudget& budget) const override;
   double density() const override;
   double wave_modulus() const override;
+  //! The probed modulus times (p_max / p_probe)^(1/3), p_max the largest mean stress of the
+  //! points: Hertz contacts stiffen a packing so (measured: docs/methods.md §7).
+  double current_wave_modulus() const override;
   //! Measured (docs/testing.md, Hard cases): a DEM-backed column is stable up to 0.5 times the
   //! CFL step of its probed modulus, departs at 0.55 and is wrong from 0.6 on.
   double max_cfl() const override { return 0.5; }

@@ -64,6 +64,9 @@ class Material {
   virtual double density() const = 0;
   //! Largest constrained (P-wave) modulus the material can show [Pa]: sets the CFL time step.
   virtual double wave_modulus() const = 0;
+  //! The constrained modulus of its stiffest point now [Pa], from state every rank holds:
+  //! wave_modulus() unless the material stiffens with its state (a packing with its pressure).
+  virtual double current_wave_modulus() const { return wave_modulus(); }
   //! Largest CFL number (time step over cell / wave speed) at which explicit MPM with this
   //! material was measured stable: 1 for a material whose wave_modulus() bounds its stiffness.
   virtual double max_cfl() const { return 1.0; }

@@ -164,6 +164,7 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
   file.set("steps", static_cast<double>(solver.steps()));
   file.set("history_rows", static_cast<double>(recorder.history_rows));
   file.set("peak_q", recorder.peak_bearing_pressure);
+  file.set("largest_stiffened_cfl", recorder.largest_stiffened_cfl);
   file.close();
   std::ofstream out(dir + "/" + CheckpointFolder::kCase);
   out << c.document.dump(1) << '\n';
@@ -282,6 +283,9 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
   RecorderState r;
   r.history_rows = static_cast<long>(file.get("history_rows"));
   r.peak_bearing_pressure = file.get("peak_q");
+  // Checkpoints written before it was kept: the largest from the resume on.
+  if (file.has_attribute("largest_stiffened_cfl"))
+    r.largest_stiffened_cfl = file.get("largest_stiffened_cfl");
   return r;
 }
 

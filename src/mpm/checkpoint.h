@@ -13,6 +13,7 @@ namespace mpm_lig::mpm {
 struct RecorderState {
   long history_rows = 0;               //!< data rows of history.csv (header excluded)
   double peak_bearing_pressure = 0.0;  //!< highest footing load / contact area so far [Pa]
+  double largest_stiffened_cfl = 0.0;  //!< Solver::stiffened_cfl()'s largest value so far
 };
 
 //! Checkpoints of a run in `run_dir/checkpoints/` (names: CheckpointFolder):

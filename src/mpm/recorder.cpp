@@ -143,6 +143,7 @@ Recorder<D>::Recorder(const MpmCase& c, const Solver<D>& solver, const std::stri
   }
   history_rows_ = resume->history_rows;
   peak_bearing_pressure_ = resume->peak_bearing_pressure;
+  largest_stiffened_cfl_ = resume->largest_stiffened_cfl;
   last_step_ = solver.steps();
   // The restored materials carry the run's totals so far: the first progress line's rates
   // count only what was done after the resume.
@@ -155,6 +156,7 @@ void Recorder<D>::after_step(const Solver<D>& solver) {
   const long step = solver.steps();
   for (const auto& f : solver.footings())
     peak_bearing_pressure_ = std::max(peak_bearing_pressure_, f.load() / f.contact_area());
+  watch_stiffened_cfl(solver);
   if (step % history_every_ == 0 || step == total_steps_) {
     history_.write(history_row(solver, simple_shear_));
     ++history_rows_;
@@ -166,6 +168,29 @@ void Recorder<D>::after_step(const Solver<D>& solver) {
       print_progress(solver);
   }
   output_seconds_ += seconds_since(start);
+}
+
+// The step is set once, from the materials' moduli at the start; packings stiffen with their
+// pressure (under a footing 5-20 times the initial), and a DEM-backed column stable at CFL 0.5
+// was unstable from 0.6 on (docs/testing.md, Hard cases): say so once when the step has grown
+// past that for the material, and keep the largest for the summary.
+template <int D>
+void Recorder<D>::watch_stiffened_cfl(const Solver<D>& solver) {
+  const double cfl = solver.stiffened_cfl();
+  largest_stiffened_cfl_ = std::max(largest_stiffened_cfl_, cfl);
+  double limit = 1.0;
+  for (std::size_t m = 0; m < solver.materials().size(); ++m)
+    limit = std::min(limit, solver.materials()[m]->max_cfl());
+  constexpr double kUnstableAbove = 1.2;  // of the measured stable limit
+  if (warned_stiffened_ || cfl <= kUnstableAbove * limit)
+    return;
+  warned_stiffened_ = true;
+  std::fprintf(stderr,
+               "mpm_lig: warning: at step %ld the materials have stiffened: the time step is "
+               "now CFL %.3f of their fastest wave, above the %.2f measured unstable; the answer "
+               "may carry a bounded instability (docs/methods.md §7): a smaller "
+               "analysis.time_step.cfl keeps it stable\n",
+               solver.steps(), cfl, kUnstableAbove * limit);
 }
 
 template <int D>
@@ -267,6 +292,7 @@ void Recorder<D>::finish(const Solver<D>& solver, const RunTotals& totals) {
   s["dimension"] = D;
   if (!solver.footings().empty())
     s["peak_q"] = peak_bearing_pressure_;  // the history's "q": bearing pressure
+  s["largest_stiffened_cfl"] = largest_stiffened_cfl_;
   io::write_json(directory_ + "/summary.json", s);
 }
 

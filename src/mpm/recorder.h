@@ -34,7 +34,9 @@ class Recorder {
            long total_steps, const RecorderState* resume = nullptr);
 
   //! What a checkpoint saves.
-  RecorderState state() const { return {history_rows_, peak_bearing_pressure_}; }
+  RecorderState state() const {
+    return {history_rows_, peak_bearing_pressure_, largest_stiffened_cfl_};
+  }
 
   //! Called after every main-stage step (and once before the first).
   void after_step(const Solver<D>& solver);
@@ -50,6 +52,7 @@ class Recorder {
  private:
   void write_fields(const Solver<D>& solver);
   void print_progress(const Solver<D>& solver);
+  void watch_stiffened_cfl(const Solver<D>& solver);
 
   std::string directory_;
   long output_every_, history_every_, total_steps_;
@@ -65,6 +68,8 @@ class Recorder {
   materials::Statistics last_statistics_;  //!< at the last progress line (rates since)
   double output_seconds_ = 0.0;
   double peak_bearing_pressure_ = 0.0;
+  double largest_stiffened_cfl_ = 0.0;
+  bool warned_stiffened_ = false;
   long history_rows_ = 0;
 };
 

@@ -119,14 +119,19 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
   }
   weights_.resize(particles_.size());
   increments_.resize(particles_.size());
+  // The second-gradient energy stiffens the shortest waves (wave number π/h) by
+  // D (π/h)² = G_s (ℓ/h)².
+  if (second_gradient_)
+    gradient_modulus_ = c.softening_modulus * (c.internal_length / grid_.min_cell()) *
+                        (c.internal_length / grid_.min_cell());
   if (c.fixed_time_step)
     check_fixed_time_step(c);
-  dt_ = c.fixed_time_step ? c.time_step : stable_time_step(c, c.cfl);
+  dt_ = c.fixed_time_step ? c.time_step : stable_time_step(c.cfl);
 }
 
 template <int D>
 void Solver<D>::check_fixed_time_step(const MpmCase& c) const {
-  const double limit = stable_time_step(c, 1.0);
+  const double limit = stable_time_step(1.0);
   if (c.time_step <= limit || constraints_.prescribes_every_node(grid_))
     return;
   std::ostringstream text;
@@ -138,20 +143,25 @@ void Solver<D>::check_fixed_time_step(const MpmCase& c) const {
 }
 
 template <int D>
-double Solver<D>::stable_time_step(const MpmCase& c, double cfl) const {
+double Solver<D>::wave_speed(bool now) const {
   double speed = 0.0;
   for (std::size_t k = 0; k < materials_.size(); ++k) {
     const materials::Material& m = *materials_[k];
-    // The second-gradient energy stiffens the shortest waves (wave number π/h) by
-    // D (π/h)² = G_s (ℓ/h)².
-    const double gradient = second_gradient_
-                                ? c.softening_modulus * (c.internal_length / grid_.min_cell()) *
-                                      (c.internal_length / grid_.min_cell())
-                                : 0.0;
+    const double modulus = now ? m.current_wave_modulus() : m.wave_modulus();
     speed =
-        std::max(speed, std::sqrt((m.wave_modulus() + gradient) / (m.density() * mass_scaling_)));
+        std::max(speed, std::sqrt((modulus + gradient_modulus_) / (m.density() * mass_scaling_)));
   }
-  return cfl * grid_.min_cell() / speed;
+  return speed;
+}
+
+template <int D>
+double Solver<D>::stable_time_step(double cfl) const {
+  return cfl * grid_.min_cell() / wave_speed(false);
+}
+
+template <int D>
+double Solver<D>::stiffened_cfl() const {
+  return dt_ * wave_speed(true) / grid_.min_cell();
 }
 
 template <int D>

@@ -46,6 +46,9 @@ class Solver {
 
   double time() const { return time_; }
   double dt() const { return dt_; }
+  //! The step over the cell and the fastest wave of the materials as they are now: the CFL
+  //! number the step has become where a material stiffens (packings under a footing).
+  double stiffened_cfl() const;
   long steps() const { return steps_; }
   const Particles<D>& particles() const { return particles_; }
   const Grid<D>& grid() const { return grid_; }
@@ -72,7 +75,10 @@ class Solver {
 
  private:
   //! The cell over the fastest wave speed, times `cfl`.
-  double stable_time_step(const MpmCase& c, double cfl) const;
+  double stable_time_step(double cfl) const;
+  //! Largest wave speed of the materials: of their moduli as set at the start, or `now`, as
+  //! their points' state has stiffened them.
+  double wave_speed(bool now) const;
   //! A fixed time step above the stable step (CFL 1) is refused, unless every node's
   //! velocity is prescribed: the explicit update would grow without bound, or, damped, end
   //! with a wrong answer and no error.
@@ -119,6 +125,7 @@ class Solver {
   double prescribed_scale_ = 1.0;  // 0 in the gravity stage
 
   double dt_ = 0.0;
+  double gradient_modulus_ = 0.0;  // the second gradient's stiffening of the shortest waves
   double time_ = 0.0;
   long steps_ = 0;
 

@@ -13,6 +13,7 @@ import numpy as np
 P0 = 1e5                    # confining traction = the packings' consolidation pressure [Pa]
 WIDTH, HEIGHT = 0.1, 0.2    # block [m]
 POINTS, STEPS, RANKS = 32, 300, 2
+CFL = 0.5                   # the case's analysis.time_step.cfl
 
 
 def main():
@@ -59,6 +60,14 @@ def main():
         # Step 0: every point carries its packing's isotropic consolidation stress.
         check(np.allclose(first[:, :2], -P0, rtol=0.02), "initial stress %s" % first[:, :2])
         check(np.mean(stress[:, 1]) < -1.2 * P0, "mean sigma_yy %.4g" % np.mean(stress[:, 1]))
+        # The step set at CFL 0.5 from the packings' moduli at p0 grows against their
+        # stiffened waves as (p_max / p0)^(1/6) (Hertz: M ∝ p^(1/3)); the outputs' largest
+        # in-plane mean stress bounds the run's from below.
+        p_max = max(np.max(-0.5 * (f[k]["stress"][:, 0] + f[k]["stress"][:, 1])) for k in steps)
+        lowest = CFL * (p_max / np.max(-0.5 * (first[:, 0] + first[:, 1]))) ** (1 / 6)
+        stiffened = s["largest_stiffened_cfl"]
+        check(lowest > 1.05 * CFL and 0.99 * lowest <= stiffened <= CFL * 4 ** (1 / 6),
+              "largest_stiffened_cfl %.4f (from the outputs at least %.4f)" % (stiffened, lowest))
     if failures:
         print("\n".join(failures))
         sys.exit(1)
