@@ -186,10 +186,10 @@ void Recorder<D>::watch_stiffened_cfl(const Solver<D>& solver) {
     return;
   warned_stiffened_ = true;
   std::fprintf(stderr,
-               "mpm_lig: warning: at step %ld the materials have stiffened: the time step is "
-               "now CFL %.3f of their fastest wave, above the %.2f measured unstable; the answer "
-               "may carry a bounded instability (docs/methods.md §7): a smaller "
-               "analysis.time_step.cfl keeps it stable\n",
+               "mpm_lig: warning: at step %ld the time step is CFL %.3f of the materials' "
+               "fastest wave as their state has stiffened them, above the %.2f measured "
+               "unstable; the answer may carry a bounded instability (docs/methods.md §7): a "
+               "smaller time step keeps it stable\n",
                solver.steps(), cfl, kUnstableAbove * limit);
 }
 
