@@ -36,9 +36,15 @@ double SecondGradient<D>::modulus(double length, double softening_modulus) {
 
 namespace {
 
-//! Each point's neighbours and least-squares weights: with w_q = 1 − (r/R)², M = Σ w dx dxᵀ,
-//! b_q = w_q M⁻¹ dx_q, the fit's gradient is Σ_q (f_q − f_p) b_qᵀ (exact for a linear f). A
+//! Each point's neighbours and least-squares weights in the reference configuration (the
+//! points' positions at the start of the main stage): with w_q = 1 − (r/R)², M = Σ w dX dXᵀ,
+//! b_q = w_q M⁻¹ dX_q, the fit's gradient is Σ_q (f_q − f_p) b_qᵀ (exact for a linear f). A
 //! point whose neighbours do not span the plane (M singular) gets none: no gradient.
+//! Why the reference and not the current positions: the forces are ∂E/∂F only, so E must
+//! depend on nothing else that moves. Weights from the current positions made E change as
+//! neighbours closed in or drew apart, work that no force did, and on the footing that
+//! unaccounted energy fed an oscillation of neighbouring points which grew at a rate per unit
+//! time that no shorter step removed (docs/methods.md §7).
 template <int D>
 std::vector<std::vector<Neighbour<D>>> neighbours_of(const Particles<D>& particles,
                                                      const Grid<D>& grid) {
@@ -47,7 +53,7 @@ std::vector<std::vector<Neighbour<D>>> neighbours_of(const Particles<D>& particl
   const double reach = kReachInCells * grid.cell().maxCoeff();
   PointBins<D> bins(grid, reach);
   for (std::size_t p = 0; p < n; ++p)
-    bins.add(p, particles.position[p]);
+    bins.add(p, particles.reference[p]);
   std::vector<std::vector<Neighbour<D>>> neighbours(n);
   std::vector<Vec> offsets;
   std::vector<double> weights;
@@ -56,11 +62,11 @@ std::vector<std::vector<Neighbour<D>>> neighbours_of(const Particles<D>& particl
     offsets.clear();
     weights.clear();
     Eigen::Matrix<double, D, D> moment = Eigen::Matrix<double, D, D>::Zero();
-    for (const std::size_t box : bins.around(particles.position[p])) {
+    for (const std::size_t box : bins.around(particles.reference[p])) {
       for (const std::size_t q : bins.members(box)) {
         if (q == p)
           continue;
-        const Vec dx = separation(grid, particles.position[p], particles.position[q]);
+        const Vec dx = separation(grid, particles.reference[p], particles.reference[q]);
         const double r2 = dx.squaredNorm() / (reach * reach);
         if (r2 >= 1.0)
           continue;
@@ -82,7 +88,7 @@ std::vector<std::vector<Neighbour<D>>> neighbours_of(const Particles<D>& particl
   return neighbours;
 }
 
-//! ∇F_p as D matrices, [c] = ∂F/∂x_c.
+//! ∇₀F_p as D matrices, [c] = ∂F/∂X_c.
 template <int D>
 std::array<Eigen::Matrix<double, D, D>, D> gradient_at(const Particles<D>& particles, std::size_t p,
                                                        const std::vector<Neighbour<D>>& list) {
@@ -112,7 +118,7 @@ void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<
     if (neighbours[p].empty())
       continue;
     const std::array<Matrix, D> gradient = gradient_at(particles, p, neighbours[p]);
-    const double scale = modulus_ * particles.volume[p];
+    const double scale = modulus_ * particles.volume0[p];
     for (const Neighbour<D>& nb : neighbours[p]) {
       Matrix share = Matrix::Zero();
       for (int c = 0; c < D; ++c)
@@ -136,7 +142,7 @@ double SecondGradient<D>::energy(const Particles<D>& particles, const Grid<D>& g
     double squared = 0.0;
     for (int c = 0; c < D; ++c)
       squared += gradient[c].squaredNorm();
-    sum += 0.5 * modulus_ * particles.volume[p] * squared;
+    sum += 0.5 * modulus_ * particles.volume0[p] * squared;
   }
   return sum;
 }

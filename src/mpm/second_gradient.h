@@ -10,9 +10,12 @@
 namespace mpm_lig::mpm {
 
 //! A second-gradient energy on the deformation field, the regularisation of
-//! `analysis.internal_length` (docs/methods.md §7): E = ½ D Σ_p V_p |∇F_p|², with ∇F_p the
+//! `analysis.internal_length` (docs/methods.md §7): E = ½ D Σ_p V⁰_p |∇₀F_p|², with ∇₀F_p the
 //! weighted least-squares gradient of the points' deformation gradients over the points
-//! within 1.5 cells of p. (A gradient through the nodes, F projected to the nodes and
+//! within 1.5 cells of p in the reference configuration (positions at the start of the main
+//! stage, initial volumes V⁰): E is a function of the points' F alone, so the forces, its
+//! derivative in F, conserve energy exactly.
+//! (A gradient through the nodes, F projected to the nodes and
 //! differentiated with the shape functions, cannot see a strain alternating cell by cell: the
 //! projection averages it away, and a softening layer fills with that pattern.)
 //! The materials are not touched: a DEM point's RVE sees the same F as without it; the energy
@@ -25,9 +28,10 @@ namespace mpm_lig::mpm {
 //! ℓ = π √(D / G_s): the case gives ℓ and G_s, D = G_s (ℓ/π)².
 //!
 //! What it keeps: the forces sum to zero (Σ_i ∇N_i = 0: momentum); E depends on F only
-//! through |∇F̃|, unchanged by a rigid rotation F → Q F, so a rotation adds no force and the
-//! torque of the forces vanishes; no state of its own (F is the points' state), so a resume
-//! and any rank count give the same forces. A uniform F has ∇F = 0 exactly (differences).
+//! through |∇₀F|, unchanged by a rigid rotation F → Q F, so a rotation adds no force and the
+//! torque of the forces vanishes; no state of its own (F and the reference positions are the
+//! points' state, checkpointed), so a resume and any rank count give the same forces. A uniform F
+//! has ∇F = 0 exactly (differences).
 template <int D>
 class SecondGradient {
  public:
@@ -41,7 +45,7 @@ class SecondGradient {
   //! S_p for every point from the points' positions, volumes and F.
   void force_tensors(const Particles<D>& particles, const Grid<D>& grid,
                      std::vector<Matrix>& out) const;
-  //! E = ½ D Σ_p V_p |∇F_p|² [J per unit thickness in 2D]: what force_tensors differentiates.
+  //! E = ½ D Σ_p V⁰_p |∇₀F_p|² [J per unit thickness in 2D]: what force_tensors differentiates.
   double energy(const Particles<D>& particles, const Grid<D>& grid) const;
 
  private:

@@ -1,7 +1,9 @@
 // The second-gradient energy of an internal length: its force tensors are the derivative of
 // its energy (a finite-difference check along random velocity gradients), it is zero for a
 // uniform F, and a rigid rotation of the whole body leaves the energy as it was and turns the
-// force tensors with it (objectivity).
+// force tensors with it (objectivity), and the energy does not change when the points move at
+// fixed F (the forces are its derivative in F only, so anything else it depended on would do
+// work no force accounts for).
 #include <cmath>
 #include <random>
 
@@ -27,7 +29,9 @@ Particles<2> lattice(std::mt19937& random) {
     for (int j = 0; j < 5; ++j) {
       const Vec2 x(0.025 + 0.05 * i, 0.025 + 0.05 * j);
       particles.position.push_back(x);
+      particles.reference.push_back(x);
       particles.volume.push_back(0.0025 * (1.0 + noise(random)));
+      particles.volume0.push_back(particles.volume.back());
       Mat3 f = Mat3::Identity();
       f(0, 0) += 0.1 * x[1] * x[1] + noise(random);
       f(0, 1) += 0.3 * x[1] + noise(random);
@@ -97,8 +101,11 @@ TEST(SecondGradient, RigidRotationKeepsTheEnergyAndTurnsTheForces) {
   const Particles<2> particles = lattice(random);
   Particles<2> turned = particles;
   const Mat3 q = plane_rotation(1.1);
-  for (Mat3& f : turned.deformation)
-    f = q * f;  // F → Q F: the same body turned (the positions' turn changes no neighbour)
+  for (std::size_t p = 0; p < turned.size(); ++p) {
+    turned.deformation[p] = q * turned.deformation[p];  // F → Q F: the same body turned
+    turned.position[p] =
+        Vec2(0.15, 0.15) + q.topLeftCorner<2, 2>() * (turned.position[p] - Vec2(0.15, 0.15));
+  }
   const SecondGradient<2> energy(0.1, 1e6);
   const double e = energy.energy(particles, kGrid);
   EXPECT_GT(e, 0.0);
@@ -110,6 +117,28 @@ TEST(SecondGradient, RigidRotationKeepsTheEnergyAndTurnsTheForces) {
   for (std::size_t p = 0; p < s.size(); ++p)
     EXPECT_NEAR((s_turned[p] - q2 * s[p] * q2.transpose()).norm(), 0.0, 1e-9 * s[p].norm() + 1e-20)
         << p;
+}
+
+TEST(SecondGradient, MovingThePointsAtFixedDeformationDoesNoWork) {
+  // Neighbours closing in (a band sheared past its neighbours, points crowding under a
+  // footing) and volumes changing at fixed F: the energy must stay what it was.
+  std::mt19937 random(5);
+  const Particles<2> particles = lattice(random);
+  Particles<2> moved = particles;
+  std::uniform_real_distribution<double> shift(-0.02, 0.02);
+  for (std::size_t p = 0; p < moved.size(); ++p) {
+    moved.position[p] += Vec2(shift(random) + 0.3 * (moved.position[p][1] - 0.15), shift(random));
+    moved.volume[p] *= 0.8;
+  }
+  const SecondGradient<2> energy(0.1, 1e6);
+  const double e = energy.energy(particles, kGrid);
+  EXPECT_GT(e, 0.0);
+  EXPECT_EQ(energy.energy(moved, kGrid), e);
+  std::vector<Matrix> s, s_moved;
+  energy.force_tensors(particles, kGrid, s);
+  energy.force_tensors(moved, kGrid, s_moved);
+  for (std::size_t p = 0; p < s.size(); ++p)
+    EXPECT_EQ(s_moved[p], s[p]) << p;
 }
 
 }  // namespace

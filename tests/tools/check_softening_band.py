@@ -5,8 +5,8 @@ usage: check_softening_band.py WORK MPM_LIG
 
 - bad input: exit 2, named, on one line, the output folder not created;
 - the layer on h = L/2, L/4, L/8 (L = 0.1 m): without an internal length the band is one cell
-  on every mesh (its width follows h); with the second gradient it is L wide within 25 % on
-  h = L/4 and L/8 and the two agree within 15 %; and after the peak the layer with the length
+  on every mesh (its width follows h); with the second gradient it is L wide within 20 % on
+  h = L/4 and L/8 and the two agree within 20 % (the internal-length issue's target); and after the peak the layer with the length
   carries more than without (the band dissipates over L, not over one cell). The table's
   numbers for all three meshes are in docs/methods.md §7.
 """
@@ -54,15 +54,15 @@ def main():
     for n in (4, 8):
         r = runs[f"second_gradient_h{n}"]
         widths[n] = r["band_width"]
-        check(abs(r["band_width"] / length - 1.0) < 0.25,
-              f"with the length the band is L wide within 25 % at h = L/{n} "
+        check(abs(r["band_width"] / length - 1.0) < 0.2,
+              f"with the length the band is L wide within 20 % at h = L/{n} "
               f"({r['band_width'] / length:.2f} L)")
         check(r["mean_stress_post_peak"] > runs[f"local_h{n}"]["mean_stress_post_peak"],
               f"h = L/{n}: more stress after the peak with the length "
               f"({r['mean_stress_post_peak'] / 1e3:.1f} against "
               f"{runs[f'local_h{n}']['mean_stress_post_peak'] / 1e3:.1f} kPa)")
-    check(abs(widths[4] / widths[8] - 1.0) < 0.15,
-          f"the band's width at h = L/4 and L/8 within 15 % ({widths[4]:.4f}, {widths[8]:.4f} m)")
+    check(abs(widths[4] / widths[8] - 1.0) < 0.2,
+          f"the band's width at h = L/4 and L/8 within 20 % ({widths[4]:.4f}, {widths[8]:.4f} m)")
     check(os.path.getsize(os.path.join(out, "softening_band.png")) > 10000, "picture written")
 
 
