@@ -129,6 +129,9 @@ struct MpmCase {
   std::string internal_length_method = "second_gradient";
   double softening_modulus = 0.0;
   double nonlocal_weight = 1.0;
+  bool has_second_gradient() const {
+    return internal_length > 0.0 && internal_length_method == "second_gradient";
+  }
   bool fixed_time_step = false;
   double cfl = 0.5;
   double time_step = 0.0;

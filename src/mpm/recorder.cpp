@@ -101,6 +101,8 @@ std::vector<std::string> Recorder<D>::history_columns(const MpmCase& c) {
     for (const char* name : {"cycle", "shear_strain", "shear_stress", "mean_stress"})
       columns.push_back(name);
   }
+  if (c.has_second_gradient())
+    columns.push_back("gradient_energy");
   return columns;
 }
 
@@ -120,6 +122,8 @@ std::vector<double> Recorder<D>::history_row(const Solver<D>& solver,
   }
   if (shear.enabled)
     append_simple_shear(solver, shear, row);
+  if (solver.has_second_gradient())
+    row.push_back(solver.gradient_energy());
   return row;
 }
 

@@ -82,10 +82,9 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
       shape_(shape_registry().create(c.shape_function)),
       constraints_(c.constraints, grid_),
       kinematics_(kinematics_operators<D>(c)),
-      second_gradient_(
-          c.internal_length > 0.0 && c.internal_length_method == "second_gradient"
-              ? std::make_unique<SecondGradient<D>>(c.internal_length, c.softening_modulus)
-              : nullptr),
+      second_gradient_(c.has_second_gradient() ? std::make_unique<SecondGradient<D>>(
+                                                     c.internal_length, c.softening_modulus)
+                                               : nullptr),
       tractions_(c.tractions),
       gravity_(Eigen::Map<const Vec>(c.gravity.data())),
       musl_(c.musl),
@@ -437,6 +436,11 @@ double Solver<D>::kinetic_energy() const {
   for (std::size_t p = 0; p < particles_.size(); ++p)
     e += 0.5 * particles_.mass[p] * particles_.velocity[p].squaredNorm();
   return e;
+}
+
+template <int D>
+double Solver<D>::gradient_energy() const {
+  return second_gradient_ ? second_gradient_->energy(particles_, grid_) : 0.0;
 }
 
 template <int D>

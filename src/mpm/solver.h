@@ -70,6 +70,10 @@ class Solver {
   }
 
   double kinetic_energy() const;
+  //! The internal length's second-gradient energy (0 without one): what the footing's work
+  //! stores in the gradient rather than spends in the materials.
+  double gradient_energy() const;
+  bool has_second_gradient() const { return second_gradient_ != nullptr; }
   double total_mass() const;
   Vec total_momentum() const;
 
