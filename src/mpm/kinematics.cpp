@@ -1,9 +1,20 @@
 #include "mpm/kinematics.h"
 
+#include <stdexcept>
+
 #include "mpm/nonlocal_deformation.h"
 #include "mpm/volumetric_smoothing.h"
 
 namespace mpm_lig::mpm {
+
+template <int D>
+void KinematicsOperator<D>::pull_back(const KinematicsContext<D>&, std::vector<Tensor>&) const {
+  throw std::logic_error("the kinematics operator " + name() +
+                         " has no work-conjugate for an energy's forces");
+}
+
+template class KinematicsOperator<2>;
+template class KinematicsOperator<3>;
 
 template <int D>
 std::vector<std::unique_ptr<KinematicsOperator<D>>> kinematics_operators(const MpmCase& c) {

@@ -40,6 +40,15 @@ class KinematicsOperator {
   virtual std::string name() const = 0;
   //! Rewrite `increments` (one per point of context.particles, in point order).
   virtual void apply(const KinematicsContext<D>& context, std::vector<Mat3>& increments) const = 0;
+
+  using Tensor = Eigen::Matrix<double, D, D>;
+  //! The work-conjugate of apply() for force tensors (each point's S, with S_p : L_p its share
+  //! of the power): rewrite `tensors` into S̃ with Σ_p S̃_p : L_p = Σ_p S_p : L̃_p, L̃ the
+  //! velocity gradients as apply() rewrites them (to first order in the step). An energy's
+  //! forces (the second gradient's) go through it, so that they do the work the energy's own
+  //! change accounts for. An operator that cannot run beside such an energy keeps this
+  //! default, which refuses.
+  virtual void pull_back(const KinematicsContext<D>& context, std::vector<Tensor>& tensors) const;
 };
 
 //! The operators case `c` asks for, in the order they apply: `analysis.internal_length`

@@ -16,6 +16,7 @@
 #include "io/run_folder.h"
 #include "mpm/case_fingerprint.h"
 #include "mpm/checkpoint_folder.h"
+#include "mpm/recorder.h"
 
 namespace mpm_lig::mpm {
 namespace {
@@ -79,6 +80,16 @@ void check_state(const MpmCase& c, const std::string& folder) {
     throw ResumeError("analysis.end.time lies before the checkpoint's time");
 }
 
+//! history.csv's header as this build writes it for case `c`.
+std::string history_header(const MpmCase& c) {
+  const std::vector<std::string> columns =
+      c.dimension == 3 ? Recorder<3>::history_columns(c) : Recorder<2>::history_columns(c);
+  std::string header;
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    header += (i ? "," : "") + columns[i];
+  return header;
+}
+
 void check_results(const MpmCase& c, const std::string& run_dir, const std::string& folder) {
   const io::CheckpointFile state(folder + "/" + CheckpointFolder::kState,
                                  io::CheckpointFile::Mode::read);
@@ -92,6 +103,15 @@ void check_results(const MpmCase& c, const std::string& run_dir, const std::stri
     throw ResumeError("'" + history + "' holds " + std::to_string(lines > 0 ? lines - 1 : 0) +
                       " rows, the checkpoint needs " + std::to_string(rows) +
                       " (cut or replaced after the checkpoint)");
+  // A build that writes other columns would append rows that its header does not name.
+  std::ifstream in(history);
+  std::string header;
+  std::getline(in, header);
+  if (header != history_header(c))
+    throw ResumeError("'" + history + "' has the columns " + header + "; this build writes " +
+                      history_header(c) +
+                      ": resume with the build that started the run, or run the case from the "
+                      "start with another --output");
   const std::string fields = run_dir + "/results.h5";
   if (!c.write_fields || !fs::exists(fields))
     return;

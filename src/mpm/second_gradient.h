@@ -14,7 +14,8 @@ namespace mpm_lig::mpm {
 //! weighted least-squares gradient of the points' deformation gradients over the points
 //! within 1.5 cells of p in the reference configuration (positions at the start of the main
 //! stage, initial volumes V⁰): E is a function of the points' F alone, so the forces, its
-//! derivative in F, conserve energy exactly.
+//! derivative in F, conserve energy (with volumetric smoothing after the solver passes them
+//! through the smoothing's work-conjugate, KinematicsOperator::pull_back).
 //! (A gradient through the nodes, F projected to the nodes and
 //! differentiated with the shape functions, cannot see a strain alternating cell by cell: the
 //! projection averages it away, and a softening layer fills with that pattern.)

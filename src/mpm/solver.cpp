@@ -250,6 +250,11 @@ void Solver<D>::compute_shape_functions() {
 template <int D>
 void Solver<D>::compute_gradient_forces() {
   second_gradient_->force_tensors(particles_, grid_, gradient_forces_);
+  // The operators will rewrite the rates these tensors do work on: their work-conjugate keeps
+  // the forces' power equal to the energy's change (volumetric smoothing's cell-mean volume).
+  const KinematicsContext<D> context{particles_, grid_, dt_};
+  for (auto op = kinematics_.rbegin(); op != kinematics_.rend(); ++op)
+    (*op)->pull_back(context, gradient_forces_);
 }
 
 template <int D>
