@@ -8,7 +8,7 @@ usage: direct_dem_compare.py RUN_DIR [RUN_DIR ...] [--multiscale-table docs/foot
 Each RUN_DIR is a direct-DEM output (summary.json, history.csv, results.h5). The multiscale
 numbers are read from their one home, the load table of --multiscale-table (the rows whose first
 cell starts with a --rows text; columns: first peak, plateau over s/B 0.1-0.4, mean over
-0.4-1.0), never copied. Prints one row per run: grains, B/d, particle-steps, core-hours, peak
+0.4-1.0, which a table that stops at s/B 0.4 lacks), never copied. Prints one row per run: grains, B/d, particle-steps, core-hours, peak
 q/q_s (at s/B), plateau 0.1-0.4, mean 0.4-1.0 (a window the run did not reach: '-') and the
 difference of each (first peak: the running maximum before the load first drops 10 % below it) against every multiscale row; writes PREFIX_load.png (q/q_s against s/B of
 every run, the multiscale peak and window means as marks) and PREFIX_fields.png (eps_q of each
@@ -45,12 +45,13 @@ def multiscale_rows(path, prefixes):
     rows = {}
     for line in open(path):
         cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cells) < 5:
+        if len(cells) < 4:
             continue
         for prefix in prefixes:
             if cells[0].startswith(prefix):
+                # A table that stops at s/B 0.4 has no post-peak column: no mean.
                 rows[prefix] = {"peak": first_number(cells[1]), "plateau": first_number(cells[3]),
-                                "mean": first_number(cells[4])}
+                                "mean": first_number(cells[4]) if len(cells) > 4 else None}
     for prefix in prefixes:
         if prefix not in rows:
             raise InputError(f"{path}: no table row starting with '{prefix}'")
@@ -182,7 +183,8 @@ def main():
                 + (f", speed x{r['speed_factor']:g}" if r["speed_factor"] != 1 else ""))
     for (name, m), colour in zip(multi.items(), ("k", "0.45", "0.7")):
         ax.plot([0.1, 0.4], [m["plateau"]] * 2, "-", color=colour, lw=3, alpha=0.6)
-        ax.plot([0.4, 1.0], [m["mean"]] * 2, "--", color=colour, lw=3, alpha=0.6)
+        if m["mean"] is not None:
+            ax.plot([0.4, 1.0], [m["mean"]] * 2, "--", color=colour, lw=3, alpha=0.6)
         ax.axhline(m["peak"], color=colour, lw=0.8, ls=":", label=f"{name}: peak (dotted), "
                    "window means (bars)")
     ax.set_xlabel("settlement s/B")
