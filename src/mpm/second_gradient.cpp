@@ -12,13 +12,6 @@ namespace {
 //! Neighbours within this many (largest) cells give a point's gradient.
 constexpr double kReachInCells = 1.5;
 
-//! One neighbour q of a point p and its least-squares weight vector b: ∇f_p = Σ_q (f_q − f_p) bᵀ.
-template <int D>
-struct Neighbour {
-  std::size_t point;
-  Eigen::Matrix<double, D, 1> weight;
-};
-
 }  // namespace
 
 template <int D>
@@ -46,19 +39,19 @@ namespace {
 //! unaccounted energy fed an oscillation of neighbouring points which grew at a rate per unit
 //! time that no shorter step removed (docs/methods.md §7).
 template <int D>
-std::vector<std::vector<Neighbour<D>>> neighbours_of(const Particles<D>& particles,
-                                                     const Grid<D>& grid) {
+std::vector<std::vector<typename SecondGradient<D>::Neighbour>> neighbours_of(
+    const Particles<D>& particles, const Grid<D>& grid) {
   using Vec = Eigen::Matrix<double, D, 1>;
   const std::size_t n = particles.size();
   const double reach = kReachInCells * grid.cell().maxCoeff();
   PointBins<D> bins(grid, reach);
   for (std::size_t p = 0; p < n; ++p)
     bins.add(p, particles.reference[p]);
-  std::vector<std::vector<Neighbour<D>>> neighbours(n);
+  std::vector<std::vector<typename SecondGradient<D>::Neighbour>> neighbours(n);
   std::vector<Vec> offsets;
   std::vector<double> weights;
   for (std::size_t p = 0; p < n; ++p) {
-    std::vector<Neighbour<D>>& list = neighbours[p];
+    std::vector<typename SecondGradient<D>::Neighbour>& list = neighbours[p];
     offsets.clear();
     weights.clear();
     Eigen::Matrix<double, D, D> moment = Eigen::Matrix<double, D, D>::Zero();
@@ -90,14 +83,15 @@ std::vector<std::vector<Neighbour<D>>> neighbours_of(const Particles<D>& particl
 
 //! ∇₀F_p as D matrices, [c] = ∂F/∂X_c.
 template <int D>
-std::array<Eigen::Matrix<double, D, D>, D> gradient_at(const Particles<D>& particles, std::size_t p,
-                                                       const std::vector<Neighbour<D>>& list) {
+std::array<Eigen::Matrix<double, D, D>, D> gradient_at(
+    const Particles<D>& particles, std::size_t p,
+    const std::vector<typename SecondGradient<D>::Neighbour>& list) {
   using Matrix = Eigen::Matrix<double, D, D>;
   const Matrix fp = particles.deformation[p].template topLeftCorner<D, D>();
   std::array<Matrix, D> gradient;
   for (int c = 0; c < D; ++c)
     gradient[c].setZero();
-  for (const Neighbour<D>& nb : list) {
+  for (const typename SecondGradient<D>::Neighbour& nb : list) {
     const Matrix df = particles.deformation[nb.point].template topLeftCorner<D, D>() - fp;
     for (int c = 0; c < D; ++c)
       gradient[c] += df * nb.weight[c];
@@ -108,18 +102,30 @@ std::array<Eigen::Matrix<double, D, D>, D> gradient_at(const Particles<D>& parti
 }  // namespace
 
 template <int D>
+const typename SecondGradient<D>::NeighbourLists& SecondGradient<D>::neighbours(
+    const Particles<D>& particles, const Grid<D>& grid) const {
+  const double reach = kReachInCells * grid.cell().maxCoeff();
+  if (reach != built_reach_ || particles.reference != built_for_) {
+    neighbours_ = neighbours_of(particles, grid);
+    built_for_ = particles.reference;
+    built_reach_ = reach;
+  }
+  return neighbours_;
+}
+
+template <int D>
 void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<D>& grid,
                                       std::vector<Matrix>& out) const {
   const std::size_t n = particles.size();
-  const auto neighbours = neighbours_of(particles, grid);
+  const NeighbourLists& lists = neighbours(particles, grid);
   // Π_q = ∂E/∂F_q: ∂(∇F_p[c])/∂F_q = b_pq[c] for q a neighbour, −Σ_q b_pq[c] for q = p.
   std::vector<Matrix> pi(n, Matrix::Zero());
   for (std::size_t p = 0; p < n; ++p) {
-    if (neighbours[p].empty())
+    if (lists[p].empty())
       continue;
-    const std::array<Matrix, D> gradient = gradient_at(particles, p, neighbours[p]);
+    const std::array<Matrix, D> gradient = gradient_at(particles, p, lists[p]);
     const double scale = modulus_ * particles.volume0[p];
-    for (const Neighbour<D>& nb : neighbours[p]) {
+    for (const Neighbour& nb : lists[p]) {
       Matrix share = Matrix::Zero();
       for (int c = 0; c < D; ++c)
         share += gradient[c] * nb.weight[c];
@@ -135,10 +141,10 @@ void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<
 
 template <int D>
 double SecondGradient<D>::energy(const Particles<D>& particles, const Grid<D>& grid) const {
-  const auto neighbours = neighbours_of(particles, grid);
+  const NeighbourLists& lists = neighbours(particles, grid);
   double sum = 0.0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
-    const std::array<Matrix, D> gradient = gradient_at(particles, p, neighbours[p]);
+    const std::array<Matrix, D> gradient = gradient_at(particles, p, lists[p]);
     double squared = 0.0;
     for (int c = 0; c < D; ++c)
       squared += gradient[c].squaredNorm();

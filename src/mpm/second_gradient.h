@@ -43,14 +43,30 @@ class SecondGradient {
   static double modulus(double length, double softening_modulus);
   double modulus() const { return modulus_; }
 
-  //! S_p for every point from the points' positions, volumes and F.
+  //! One neighbour q of a point p and its least-squares weight vector b: ∇₀f_p = Σ_q (f_q − f_p)
+  //! bᵀ.
+  struct Neighbour {
+    std::size_t point;
+    Eigen::Matrix<double, D, 1> weight;
+  };
+  using NeighbourLists = std::vector<std::vector<Neighbour>>;
+
+  //! S_p for every point from the points' reference positions, initial volumes and F.
   void force_tensors(const Particles<D>& particles, const Grid<D>& grid,
                      std::vector<Matrix>& out) const;
   //! E = ½ D Σ_p V⁰_p |∇₀F_p|² [J per unit thickness in 2D]: what force_tensors differentiates.
   double energy(const Particles<D>& particles, const Grid<D>& grid) const;
 
  private:
+  //! The neighbour lists of the points' reference configuration, built again only when it is
+  //! not the one they were built for (the main stage's start, a resume, another body): the
+  //! reference does not move within a stage, so the lists are built once, not every step.
+  const NeighbourLists& neighbours(const Particles<D>& particles, const Grid<D>& grid) const;
+
   double modulus_;
+  mutable std::vector<Eigen::Matrix<double, D, 1>> built_for_;  // reference positions
+  mutable double built_reach_ = 0.0;
+  mutable NeighbourLists neighbours_;
 };
 
 }  // namespace mpm_lig::mpm

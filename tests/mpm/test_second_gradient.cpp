@@ -143,6 +143,22 @@ TEST(SecondGradient, MovingThePointsAtFixedDeformationDoesNoWork) {
     EXPECT_EQ(s_moved[p], s[p]) << p;
 }
 
+TEST(SecondGradient, NeighboursAreBuiltAgainForAnotherReference) {
+  // The lists are kept between calls: a new reference configuration (the main stage's start,
+  // a resume) must give what a fresh object gives, and the old one its old answer again.
+  std::mt19937 random(17);
+  const Particles<2> first = lattice(random);
+  Particles<2> second = first;
+  for (Vec2& x : second.reference)
+    x = Vec2(0.15, 0.15) + Vec2(0.9 * (x[0] - 0.15), 0.7 * (x[1] - 0.15));
+  const SecondGradient<2> kept(0.1, 1e6);
+  const double e_first = kept.energy(first, kGrid);
+  const double e_second = kept.energy(second, kGrid);
+  EXPECT_NE(e_second, e_first);
+  EXPECT_EQ(e_second, SecondGradient<2>(0.1, 1e6).energy(second, kGrid));
+  EXPECT_EQ(kept.energy(first, kGrid), e_first);
+}
+
 TEST(SecondGradient, ForcesThroughTheSmoothingsConjugateDoTheEnergysWork) {
   // The rates L_p become L̃_p once the smoothing has evened the volume change over each cell
   // (four points a cell here): the energy then changes by ε Σ S_p : L̃_p, which the pulled-back
