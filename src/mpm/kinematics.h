@@ -17,8 +17,9 @@ namespace mpm_lig::mpm {
 //! RVEs over the ranks), so an operator sees all points on every rank and needs no messages.
 template <int D>
 struct KinematicsContext {
-  //! Positions at the end of the step (after grid → points); volumes still those of its start
-  //! (the increments are applied to F and V after the operators); masses, materials.
+  //! For apply(): positions at the end of the step (after grid → points); volumes still those
+  //! of its start (the increments are applied to F and V after the operators); masses,
+  //! materials. For pull_back(): the step's start (the forces are computed before the motion).
   const Particles<D>& particles;
   const Grid<D>& grid;  //!< cells, for a neighbourhood or a cell average
   double dt;            //!< the step [s]
