@@ -15,10 +15,15 @@ CsvHistory::CsvHistory(const std::string& filename, std::vector<std::string> col
     throw std::runtime_error("cannot write '" + filename + "'");
   if (append)
     return;
-  for (std::size_t i = 0; i < columns_.size(); ++i)
-    out_ << (i ? "," : "") << columns_[i];
-  out_ << '\n';
+  out_ << header(columns_) << '\n';
   flush_checked(out_, filename_);
+}
+
+std::string CsvHistory::header(const std::vector<std::string>& columns) {
+  std::string line;
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    line += (i ? "," : "") + columns[i];
+  return line;
 }
 
 void CsvHistory::write(const std::vector<double>& values) {

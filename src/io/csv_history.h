@@ -13,6 +13,8 @@ class CsvHistory {
   CsvHistory(const std::string& filename, std::vector<std::string> columns, bool append = false);
 
   const std::vector<std::string>& columns() const { return columns_; }
+  //! The header row (without its newline) for `columns`, as the file holds it.
+  static std::string header(const std::vector<std::string>& columns);
   //! Write one row; throws std::invalid_argument if the count does not match the header and
   //! std::runtime_error if the row did not reach the file.
   void write(const std::vector<double>& values);

@@ -82,12 +82,8 @@ void check_state(const MpmCase& c, const std::string& folder) {
 
 //! history.csv's header as this build writes it for case `c`.
 std::string history_header(const MpmCase& c) {
-  const std::vector<std::string> columns =
-      c.dimension == 3 ? Recorder<3>::history_columns(c) : Recorder<2>::history_columns(c);
-  std::string header;
-  for (std::size_t i = 0; i < columns.size(); ++i)
-    header += (i ? "," : "") + columns[i];
-  return header;
+  return io::CsvHistory::header(c.dimension == 3 ? Recorder<3>::history_columns(c)
+                                                 : Recorder<2>::history_columns(c));
 }
 
 void check_results(const MpmCase& c, const std::string& run_dir, const std::string& folder) {
@@ -107,9 +103,10 @@ void check_results(const MpmCase& c, const std::string& run_dir, const std::stri
   std::ifstream in(history);
   std::string header;
   std::getline(in, header);
-  if (header != history_header(c))
+  const std::string expected = history_header(c);
+  if (header != expected)
     throw ResumeError("'" + history + "' has the columns " + header + "; this build writes " +
-                      history_header(c) +
+                      expected +
                       ": resume with the build that started the run, or run the case from the "
                       "start with another --output");
   const std::string fields = run_dir + "/results.h5";
