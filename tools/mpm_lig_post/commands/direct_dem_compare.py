@@ -8,8 +8,8 @@ usage: direct_dem_compare.py RUN_DIR [RUN_DIR ...] [--multiscale-table docs/foot
 Each RUN_DIR is a direct-DEM output (summary.json, history.csv, results.h5). The multiscale
 numbers are read from their one home, the load table of --multiscale-table (the rows whose first
 cell starts with a --rows text; columns: first peak, plateau over s/B 0.1-0.4, mean over
-0.4-1.0, which a table that stops at s/B 0.4 lacks), never copied. Prints one row per run: grains, B/d, particle-steps, core-hours, peak
-q/q_s (at s/B), plateau 0.1-0.4, mean 0.4-1.0 (a window the run did not reach: '-') and the
+0.4-1.0, which a table that stops at s/B 0.4 lacks), never copied. Prints one row per run:
+grains, B/d, particle-steps, core-hours, peak q/q_s (at s/B), plateau 0.1-0.4, mean 0.4-1.0 (a window the run did not reach: '-') and the
 difference of each (first peak: the running maximum before the load first drops 10 % below it) against every multiscale row; writes PREFIX_load.png (q/q_s against s/B of
 every run, the multiscale peak and window means as marks) and PREFIX_fields.png (eps_q of each
 run at s/B = --at beside the --pictures of the multiscale fields), and PREFIX.json.
