@@ -171,7 +171,8 @@ void DemRveMaterial::update(const materials::MaterialStep& step, std::vector<Mat
   const DemBatch batch = selection_.select(points_, step);
   // The stresses before the update, the same on every rank (the gather overwrites them).
   const std::vector<Mat3> before = results_.stress;
-  const std::vector<double> predicted = schedule_.predict_steps(batch, results_.dem_pressure);
+  const std::vector<double> predicted =
+      schedule_.predict_steps(batch, results_.dem_pressure, results_.shear_path);
   rebalance(predicted, batch);
   const double start = MPI_Wtime();
   const std::vector<double> owned = rves_->deform(batch, results_.stress, updates_);

@@ -17,11 +17,12 @@ struct RveStateField {
 //! Every field of rve::Rve::State, in the order both of its copies use: a checkpoint's named
 //! arrays (point_checkpoint.cpp) and a moving RVE's broadcast (rve_migration.cpp). A new field
 //! of the state is one line here; the static_assert below fails until it is added.
-inline constexpr std::array<RveStateField, 4> kRveStateFields{{
+inline constexpr std::array<RveStateField, 5> kRveStateFields{{
     {"rotation", 9, [](rve::Rve::State& s) { return s.rotation.data(); }},
     {"streaming", 9, [](rve::Rve::State& s) { return s.streaming.data(); }},
     {"rve_particle_steps", 1, [](rve::Rve::State& s) { return &s.particle_steps; }},
     {"last_mean_stress", 1, [](rve::Rve::State& s) { return &s.last_mean_stress; }},
+    {"rve_shear_path", 1, [](rve::Rve::State& s) { return &s.shear_path; }},
 }};
 
 //! Doubles of a packed rve::Rve::State (the sum of the widths).

@@ -129,6 +129,11 @@ SubstepSpec parse_substeps(const CaseNode& node) {
   if (s.max < s.min)
     node.fail("max", "must be >= substeps.min (" + std::to_string(s.min) + ")");
   s.pressure_floor = node.in_range_or("pressure_floor", 1.0, 1e9, 1e3);
+  if (node.has("sheared")) {
+    const CaseNode sheared = node.child("sheared");
+    s.sheared_after = sheared.in_range("shear_strain", 1e-4, 100.0);
+    s.sheared_inertial_number = sheared.in_range("inertial_number", 1e-7, 0.1);
+  }
   return s;
 }
 

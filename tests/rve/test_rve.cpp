@@ -48,6 +48,16 @@ class RveTest : public ::testing::Test {
   std::unique_ptr<rve::Rve> clone() {
     return rve::Rve::from_restart(*spec_, restart_, MPI_COMM_WORLD, "clone");
   }
+  //! A clone of 120 grains whose sub-step rule is `substeps`, its stress read (the rule reads
+  //! the last measured mean stress).
+  std::unique_ptr<rve::Rve> clone_stepping(const nlohmann::json& substeps) {
+    nlohmann::json json = test::small_rve_json();
+    json["grains"] = 120;
+    json["substeps"] = substeps;
+    auto r = rve::Rve::from_restart(test::parse_rve(json), restart_, MPI_COMM_WORLD, "clone");
+    r->stress();
+    return r;
+  }
   static std::unique_ptr<rve::RveSpec> spec_;
   static std::unique_ptr<rve::Rve> original_;
   static rve::ConsolidationResult result_;
@@ -132,21 +142,53 @@ TEST_F(RveTest, CloneIsBitIdenticalToItsOriginalAfterTheSameDeformation) {
 // The sub-step rule counts the mean stress as at least substeps.pressure_floor: a floor above
 // the packing's pressure p asks for sqrt(p / floor) of the sub-steps (to the rounding up).
 TEST_F(RveTest, PressureFloorBoundsSubsteps) {
-  nlohmann::json json = test::small_rve_json();
-  json["grains"] = 120;
-  json["substeps"] = {{"inertial_number", 1e-4}, {"min", 1}};
-  const rve::RveSpec plain = test::parse_rve(json);
-  json["substeps"]["pressure_floor"] = 100 * kPressure;
-  const rve::RveSpec floored = test::parse_rve(json);
+  nlohmann::json substeps = {{"inertial_number", 1e-4}, {"min", 1}};
+  auto a = clone_stepping(substeps);
+  substeps["pressure_floor"] = 100 * kPressure;
+  auto b = clone_stepping(substeps);
   Mat3 dF = Mat3::Identity();
   dF(0, 1) = 2e-3;
-  auto a = rve::Rve::from_restart(plain, restart_, MPI_COMM_WORLD, "plain");
-  auto b = rve::Rve::from_restart(floored, restart_, MPI_COMM_WORLD, "floored");
-  a->stress();  // the rule reads the last measured mean stress
-  b->stress();
   const int n_plain = a->deform(dF), n_floored = b->deform(dF);
   EXPECT_GT(n_plain, 20);
   EXPECT_NEAR(n_floored, std::ceil(n_plain / 10.0), 1.0) << n_plain << " vs " << n_floored;
+}
+
+// γ = √2 |dev ε| is the engineering shear strain of a simple shear and 2e of a pure shear
+// diag(1 + e, 1 - e); a uniform expansion has none, and a 2D RVE ignores the out-of-plane row.
+TEST(ShearOfIncrement, ClosedForms) {
+  Mat3 simple = Mat3::Identity();
+  simple(0, 1) = 3e-3;
+  EXPECT_NEAR(rve::shear_of_increment(simple, 2), 3e-3, 1e-15);
+  EXPECT_NEAR(rve::shear_of_increment(simple, 3), 3e-3, 1e-15);
+  const Mat3 pure = Vec3(1.0 + 2e-3, 1.0 - 2e-3, 1.0).asDiagonal();
+  EXPECT_NEAR(rve::shear_of_increment(pure, 2), 4e-3, 1e-15);
+  EXPECT_NEAR(rve::shear_of_increment(Mat3::Identity() * 1.01, 3), 0.0, 1e-15);
+  const Mat3 expansion = Vec3(1.01, 1.01, 1.0).asDiagonal();
+  EXPECT_NEAR(rve::shear_of_increment(expansion, 2), 0.0, 1e-15);
+  EXPECT_GT(rve::shear_of_increment(expansion, 3), 0.0);
+}
+
+// Once its path of shear strain reaches substeps.sheared.shear_strain, an RVE steps at the
+// sheared inertial number: the same sub-steps as the plain rule before (same packing, same
+// increments, bit-identical stress), a third of them after (I 1e-4 -> 3e-4), and the path is
+// the sum of the increments' γ.
+TEST_F(RveTest, ShearedPaceTakesOverAtItsShearPath) {
+  nlohmann::json substeps = {{"inertial_number", 1e-4}, {"min", 1}};
+  auto a = clone_stepping(substeps);
+  substeps["sheared"] = {{"shear_strain", 5e-3}, {"inertial_number", 3e-4}};
+  auto b = clone_stepping(substeps);
+  Mat3 dF = Mat3::Identity();
+  dF(0, 1) = 2e-3;
+  for (int k = 0; k < 3; ++k) {  // paths 0, 2e-3, 4e-3 before each increment: the plain rule
+    EXPECT_EQ(a->deform(dF), b->deform(dF)) << "increment " << k;
+    const Mat3 sa = a->stress(), sb = b->stress();
+    EXPECT_EQ((sa - sb).norm(), 0.0) << "increment " << k;
+  }
+  EXPECT_NEAR(b->shear_path(), 6e-3, 1e-4);
+  const int n_plain = a->deform(dF), n_paced = b->deform(dF);
+  EXPECT_GT(n_plain, 20);
+  EXPECT_NEAR(n_paced, n_plain / 3.0, 0.15 * n_plain) << n_plain << " vs " << n_paced;
+  EXPECT_EQ(b->state().shear_path, b->shear_path());
 }
 
 // Right after a run under `fix deform` (what an MPM update reads), with a reduced cell basis.
