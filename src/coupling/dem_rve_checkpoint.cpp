@@ -74,7 +74,7 @@ void DemRveMaterial::restore_checkpoint(const materials::CheckpointReader& in,
     results_.stress[p] = saved.stress;
     results_.substeps[p] = saved.substeps;
     results_.dem_pressure[p] = saved.rve.last_mean_stress;
-    results_.shear_path[p] = saved.rve.shear_path;
+    results_.net_shear[p] = rve::shear_of_strain(saved.rve.strain, spec_.dimension);
     work_.restore_row(p, saved.work);
     quiet.restore_row(p, saved.quiet);
     flow.restore_row(p, saved.flow);

@@ -172,7 +172,7 @@ void DemRveMaterial::update(const materials::MaterialStep& step, std::vector<Mat
   // The stresses before the update, the same on every rank (the gather overwrites them).
   const std::vector<Mat3> before = results_.stress;
   const std::vector<double> predicted =
-      schedule_.predict_steps(batch, results_.dem_pressure, results_.shear_path);
+      schedule_.predict_steps(batch, results_.dem_pressure, results_.net_shear);
   rebalance(predicted, batch);
   const double start = MPI_Wtime();
   const std::vector<double> owned = rves_->deform(batch, results_.stress, updates_);

@@ -86,7 +86,7 @@ std::vector<double> OwnedRves::deform(const DemBatch& batch, const std::vector<M
                   kExitEngineFailure);
       }
     }
-    append_result(rows, sigma, steps, rve.shear_path(), MPI_Wtime() - start);
+    append_result(rows, sigma, steps, rve.net_shear(), MPI_Wtime() - start);
   }
   return rows;
 }

@@ -6,14 +6,14 @@ void PointResults::start(std::size_t points) {
   stress.assign(points, Mat3::Zero());
   substeps.assign(points, 0.0);
   dem_pressure.assign(points, 0.0);  // a clone has not measured its stress yet
-  shear_path.assign(points, 0.0);
+  net_shear.assign(points, 0.0);
 }
 
-void append_result(std::vector<double>& rows, const Mat3& stress, double steps, double shear_path,
+void append_result(std::vector<double>& rows, const Mat3& stress, double steps, double net_shear,
                    double seconds) {
   rows.insert(rows.end(), stress.data(), stress.data() + 9);
   rows.push_back(steps);
-  rows.push_back(shear_path);
+  rows.push_back(net_shear);
   rows.push_back(seconds);
 }
 
@@ -25,7 +25,7 @@ std::vector<double> gather_results(const RveLayout& layout, const std::vector<do
   for (std::size_t p = 0; p < points; ++p) {
     results.stress[p] = Eigen::Map<const Mat3>(&all[p * kResultWidth]);
     results.substeps[p] = all[p * kResultWidth + 9];
-    results.shear_path[p] = all[p * kResultWidth + 10];
+    results.net_shear[p] = all[p * kResultWidth + 10];
     seconds[p] = all[p * kResultWidth + 11];
     if (batch.runs(p))
       results.dem_pressure[p] = mean_pressure(results.stress[p], dimension);

@@ -15,11 +15,11 @@ constexpr const char* kSteppingName = "stepping";  // StepTotals ×3, migrations
 
 std::vector<double> RveSchedule::predict_steps(const DemBatch& batch,
                                                const std::vector<double>& dem_pressure,
-                                               const std::vector<double>& shear_path) const {
+                                               const std::vector<double>& net_shear) const {
   std::vector<double> steps(dem_pressure.size(), 0.0);
   for (std::size_t p = 0; p < steps.size(); ++p) {
     if (batch.runs(p))
-      steps[p] = rve::predicted_substeps(rve_, batch.increment(p), dem_pressure[p], shear_path[p]);
+      steps[p] = rve::predicted_substeps(rve_, batch.increment(p), dem_pressure[p], net_shear[p]);
   }
   return steps;
 }

@@ -26,9 +26,9 @@ class RveSchedule {
       : balance_(balance), rve_(rve), path_(std::move(path)) {}
 
   //! Every point's predicted DEM steps of this update (0 for those that run none), from the
-  //! mean stress each RVE last measured and its shear path.
+  //! mean stress each RVE last measured and its net shear.
   std::vector<double> predict_steps(const DemBatch& batch, const std::vector<double>& dem_pressure,
-                                    const std::vector<double>& shear_path) const;
+                                    const std::vector<double>& net_shear) const;
   //! The moves that pay before this update (plan.moves 0: none; always when balancing is off
   //! or there is one group).
   BalancePlan plan(const std::vector<double>& predicted_steps, const DemBatch& batch,

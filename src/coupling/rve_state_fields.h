@@ -22,7 +22,7 @@ inline constexpr std::array<RveStateField, 5> kRveStateFields{{
     {"streaming", 9, [](rve::Rve::State& s) { return s.streaming.data(); }},
     {"rve_particle_steps", 1, [](rve::Rve::State& s) { return &s.particle_steps; }},
     {"last_mean_stress", 1, [](rve::Rve::State& s) { return &s.last_mean_stress; }},
-    {"rve_shear_path", 1, [](rve::Rve::State& s) { return &s.shear_path; }},
+    {"rve_strain", 9, [](rve::Rve::State& s) { return s.strain.data(); }},
 }};
 
 //! Doubles of a packed rve::Rve::State (the sum of the widths).

@@ -203,14 +203,12 @@ void Rve::restore(const State& s) {
   streaming_ = s.streaming;
   particle_steps_ = s.particle_steps;
   last_mean_stress_ = s.last_mean_stress;
-  shear_path_ = s.shear_path;
+  strain_ = s.strain;
 }
 
-double shear_of_increment(const Mat3& effective_increment, int dimension) {
-  const Mat3 strain =
-      0.5 * (effective_increment + effective_increment.transpose()) - Mat3::Identity();
-  Mat3 deviator = strain;
-  const double mean = strain.topLeftCorner(dimension, dimension).trace() / dimension;
+double shear_of_strain(const Mat3& strain, int dimension) {
+  Mat3 deviator = 0.5 * (strain + strain.transpose());
+  const double mean = deviator.topLeftCorner(dimension, dimension).trace() / dimension;
   for (int i = 0; i < dimension; ++i)
     deviator(i, i) -= mean;
   if (dimension == 2)
@@ -219,11 +217,11 @@ double shear_of_increment(const Mat3& effective_increment, int dimension) {
 }
 
 int substeps_for_increment(const RveSpec& spec, const Mat3& effective_increment, double mean_stress,
-                           double shear_path) {
+                           double net_shear) {
   const SubstepSpec& s = spec.substeps;
   if (s.fixed > 0)
     return s.fixed;
-  const bool sheared = s.sheared_after > 0.0 && shear_path >= s.sheared_after;
+  const bool sheared = s.sheared_after > 0.0 && net_shear >= s.sheared_after;
   const double inertial_number = sheared ? s.sheared_inertial_number : s.inertial_number;
   // Inertial number I = γ̇ d sqrt(ρ/p), with γ̇ = |ΔF_eff - I| / (n Δt) (docs/DESIGN.md §8).
   const double strain = (effective_increment - Mat3::Identity()).norm();
@@ -233,17 +231,17 @@ int substeps_for_increment(const RveSpec& spec, const Mat3& effective_increment,
   return static_cast<int>(std::min<double>(s.max, std::max<double>(s.min, std::ceil(n))));
 }
 
-int predicted_substeps(const RveSpec& spec, const Mat3& dF, double mean_stress, double shear_path) {
+int predicted_substeps(const RveSpec& spec, const Mat3& dF, double mean_stress, double net_shear) {
   if (spec.substeps.fixed > 0)
     return spec.substeps.fixed;
   // An RVE whose frame is the physical one and whose box is rectangular: the box's own
   // increment is the triangular factor of dF (the rotation taken out).
   return substeps_for_increment(spec, box_step(dF, Mat3::Identity()).target, mean_stress,
-                                shear_path);
+                                net_shear);
 }
 
 int Rve::substeps_for(const Mat3& effective_increment) {
-  return substeps_for_increment(spec_, effective_increment, last_mean_stress_, shear_path_);
+  return substeps_for_increment(spec_, effective_increment, last_mean_stress_, net_shear());
 }
 
 // Streaming velocity: the box's affine velocity field in the grains (docs/DESIGN.md §2.4).
@@ -329,7 +327,7 @@ int Rve::deform(const Mat3& dF, int substeps) {
   run_to_box(step.target, n);
   rotation_ = rotation_ * step.rotation;
   particle_steps_ += static_cast<double>(n) * static_cast<double>(spec_.grains);
-  shear_path_ += shear_of_increment(effective, spec_.dimension);
+  strain_ += 0.5 * (effective + effective.transpose()) - Mat3::Identity();
   return n;
 }
 

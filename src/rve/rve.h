@@ -19,18 +19,18 @@ namespace mpm_lig::rve {
 //! ΔF'·h = Q_inc·R_new; the box is driven to R_new with `fix deform … final`, and Q ← Q·Q_inc.
 //! All calls are collective over the RVE's communicator.
 //! DEM steps of an update of box increment `effective_increment` (rotation taken out) at
-//! mean stress `mean_stress` by an RVE whose path of shear strain so far is `shear_path`, by
-//! the spec's sub-stepping rule (docs/DESIGN.md §8).
+//! mean stress `mean_stress` by an RVE that has sheared by `net_shear` so far (Rve::net_shear),
+//! by the spec's sub-stepping rule (docs/DESIGN.md §8).
 int substeps_for_increment(const RveSpec& spec, const Mat3& effective_increment, double mean_stress,
-                           double shear_path);
-//! Engineering shear strain γ = √2 |dev ε| of a box increment (the in-plane deviator in 2D):
+                           double net_shear);
+//! Engineering shear strain γ = √2 |dev ε| of a small strain ε (the in-plane deviator in 2D):
 //! γ of a simple shear.
-double shear_of_increment(const Mat3& effective_increment, int dimension);
-//! The DEM steps an RVE of `spec` at mean stress `mean_stress` and shear path `shear_path` is
+double shear_of_strain(const Mat3& strain, int dimension);
+//! The DEM steps an RVE of `spec` at mean stress `mean_stress`, sheared by `net_shear`, is
 //! expected to run for the physical increment `dF`: exact for an RVE whose frame is the physical
 //! one and whose box is rectangular, an estimate otherwise. Needs no RVE, so every rank can predict
 //! every point.
-int predicted_substeps(const RveSpec& spec, const Mat3& dF, double mean_stress, double shear_path);
+int predicted_substeps(const RveSpec& spec, const Mat3& dF, double mean_stress, double net_shear);
 
 class Rve {
  public:
@@ -84,7 +84,9 @@ class Rve {
     Mat3 streaming = Mat3::Zero();
     double particle_steps = 0.0;
     double last_mean_stress = 0.0;
-    double shear_path = 0.0;  //!< Σ γ of the box increments (the sub-step rule reads it)
+    //! Σ sym(ΔF_eff − 1) over the box increments (RVE frame): the net strain the packing has
+    //! run, reversals cancelled (the sub-step rule reads its shear).
+    Mat3 strain = Mat3::Zero();
   };
   //! Checkpoint of a running RVE: the engine restart (contact history and streaming velocities
   //! kept) in `file` and the exact grain placement in placement_file(`file`). Writing it leaves
@@ -94,7 +96,7 @@ class Rve {
   //! The file beside a checkpoint's restart file that keeps the exact placement.
   static std::string placement_file(const std::string& checkpoint_file);
   State state() const {
-    return {rotation_, streaming_, particle_steps_, last_mean_stress_, shear_path_};
+    return {rotation_, streaming_, particle_steps_, last_mean_stress_, strain_};
   }
   //! Take the state a checkpoint saved (after from_restart of its restart file).
   void restore(const State& s);
@@ -106,8 +108,8 @@ class Rve {
   double volume() const;
   //! Accumulated DEM particle-steps (grains × steps) of this RVE.
   double particle_steps() const { return particle_steps_; }
-  //! The path of shear strain γ its box increments have run so far (clones start at 0).
-  double shear_path() const { return shear_path_; }
+  //! γ of the net strain its box increments have run so far (clones start at 0).
+  double net_shear() const { return shear_of_strain(strain_, spec_.dimension); }
 
  private:
   Rve(const RveSpec& spec, MPI_Comm comm, const std::string& label);
@@ -131,7 +133,7 @@ class Rve {
   Mat3 streaming_ = Mat3::Zero();  //!< velocity gradient currently in the grain velocities
   double particle_steps_ = 0.0;
   double last_mean_stress_ = 0.0;
-  double shear_path_ = 0.0;
+  Mat3 strain_ = Mat3::Zero();
 };
 
 }  // namespace mpm_lig::rve

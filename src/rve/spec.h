@@ -51,7 +51,7 @@ struct SubstepSpec {
   //! The mean stress the rule counts at least [Pa]: as p → 0 (liquefied, dilated, unloaded
   //! packings) the quasi-static rule asks for ever more sub-steps (docs/dem_work.md).
   double pressure_floor = 1e3;
-  //! Once an RVE's path of shear strain γ (Σ over its updates) reaches `sheared_after`, the
+  //! Once the net shear strain γ an RVE has run (Rve::net_shear) reaches `sheared_after`, the
   //! rule targets `sheared_inertial_number` instead: past its peak a packing's stress ratio
   //! hardly depends on I, its peak does (docs/dem_work.md §8). 0: off.
   double sheared_after = 0.0;

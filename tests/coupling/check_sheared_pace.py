@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The sheared pace took over where the case says and only there: RUN (the case CASE, with
 rve.substeps.sheared) and OFF (the same case without it) have bit-identical history rows until
-the RVEs' path of shear strain nears sheared.shear_strain (the column shears at the rate its top
+the net shear strain the RVEs have run nears sheared.shear_strain (the column shears at the rate its top
 row's velocity over its height sets), rows that differ soon after, and RUN did less DEM work.
 
 usage: check_sheared_pace.py CASE RUN OFF

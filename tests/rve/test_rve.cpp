@@ -154,41 +154,44 @@ TEST_F(RveTest, PressureFloorBoundsSubsteps) {
 }
 
 // γ = √2 |dev ε| is the engineering shear strain of a simple shear and 2e of a pure shear
-// diag(1 + e, 1 - e); a uniform expansion has none, and a 2D RVE ignores the out-of-plane row.
-TEST(ShearOfIncrement, ClosedForms) {
-  Mat3 simple = Mat3::Identity();
-  simple(0, 1) = 3e-3;
-  EXPECT_NEAR(rve::shear_of_increment(simple, 2), 3e-3, 1e-15);
-  EXPECT_NEAR(rve::shear_of_increment(simple, 3), 3e-3, 1e-15);
-  const Mat3 pure = Vec3(1.0 + 2e-3, 1.0 - 2e-3, 1.0).asDiagonal();
-  EXPECT_NEAR(rve::shear_of_increment(pure, 2), 4e-3, 1e-15);
-  EXPECT_NEAR(rve::shear_of_increment(Mat3::Identity() * 1.01, 3), 0.0, 1e-15);
-  const Mat3 expansion = Vec3(1.01, 1.01, 1.0).asDiagonal();
-  EXPECT_NEAR(rve::shear_of_increment(expansion, 2), 0.0, 1e-15);
-  EXPECT_GT(rve::shear_of_increment(expansion, 3), 0.0);
+// diag(e, -e); a uniform expansion has none, and a 2D RVE ignores the out-of-plane row.
+TEST(ShearOfStrain, ClosedForms) {
+  Mat3 simple = Mat3::Zero();
+  simple(0, 1) = simple(1, 0) = 1.5e-3;
+  EXPECT_NEAR(rve::shear_of_strain(simple, 2), 3e-3, 1e-15);
+  EXPECT_NEAR(rve::shear_of_strain(simple, 3), 3e-3, 1e-15);
+  const Mat3 pure = Vec3(2e-3, -2e-3, 0.0).asDiagonal();
+  EXPECT_NEAR(rve::shear_of_strain(pure, 2), 4e-3, 1e-15);
+  EXPECT_NEAR(rve::shear_of_strain(Mat3::Identity() * 0.01, 3), 0.0, 1e-15);
+  const Mat3 expansion = Vec3(0.01, 0.01, 0.0).asDiagonal();
+  EXPECT_NEAR(rve::shear_of_strain(expansion, 2), 0.0, 1e-15);
+  EXPECT_GT(rve::shear_of_strain(expansion, 3), 0.0);
 }
 
-// Once its path of shear strain reaches substeps.sheared.shear_strain, an RVE steps at the
-// sheared inertial number: the same sub-steps as the plain rule before (same packing, same
-// increments, bit-identical stress), a third of them after (I 1e-4 -> 3e-4), and the path is
-// the sum of the increments' γ.
-TEST_F(RveTest, ShearedPaceTakesOverAtItsShearPath) {
+// Once the net shear strain it has run reaches substeps.sheared.shear_strain, an RVE steps at
+// the sheared inertial number: the same sub-steps as the plain rule before (same packing, same
+// increments, bit-identical stress), a third of them after (I 1e-4 -> 3e-4). Increments that
+// reverse cancel: a packing shaken back and forth stays at the plain rule.
+TEST_F(RveTest, ShearedPaceTakesOverAtItsNetShear) {
   nlohmann::json substeps = {{"inertial_number", 1e-4}, {"min", 1}};
   auto a = clone_stepping(substeps);
   substeps["sheared"] = {{"shear_strain", 5e-3}, {"inertial_number", 3e-4}};
   auto b = clone_stepping(substeps);
+  auto shaken = clone_stepping(substeps);
   Mat3 dF = Mat3::Identity();
   dF(0, 1) = 2e-3;
-  for (int k = 0; k < 3; ++k) {  // paths 0, 2e-3, 4e-3 before each increment: the plain rule
+  for (int k = 0; k < 3; ++k) {  // net shear 0, 2e-3, 4e-3 before each increment: the plain rule
     EXPECT_EQ(a->deform(dF), b->deform(dF)) << "increment " << k;
     const Mat3 sa = a->stress(), sb = b->stress();
     EXPECT_EQ((sa - sb).norm(), 0.0) << "increment " << k;
+    shaken->deform(k % 2 ? dF.inverse() : dF);
   }
-  EXPECT_NEAR(b->shear_path(), 6e-3, 1e-4);
+  EXPECT_NEAR(b->net_shear(), 6e-3, 1e-4);
+  EXPECT_LT(shaken->net_shear(), 2.1e-3);
   const int n_plain = a->deform(dF), n_paced = b->deform(dF);
   EXPECT_GT(n_plain, 20);
   EXPECT_NEAR(n_paced, n_plain / 3.0, 0.15 * n_plain) << n_plain << " vs " << n_paced;
-  EXPECT_EQ(b->state().shear_path, b->shear_path());
+  EXPECT_EQ(rve::shear_of_strain(b->state().strain, 2), b->net_shear());
 }
 
 // Right after a run under `fix deform` (what an MPM update reads), with a reduced cell basis.
