@@ -106,13 +106,21 @@ void read_internal_length(const CaseNode& l, MpmCase& c) {
   c.internal_length_method =
       l.choice_or("method", {"second_gradient", "nonlocal"}, "second_gradient");
   const bool second_gradient = c.internal_length_method == "second_gradient";
-  const char* other = second_gradient ? "nonlocal_weight" : "softening_modulus";
-  if (l.has(other))
-    l.fail(other, std::string("belongs to method \"") +
-                      (second_gradient ? "nonlocal" : "second_gradient") + "\"");
-  if (second_gradient)
+  for (const char* other : second_gradient
+                               ? std::vector<const char*>{"nonlocal_weight"}
+                               : std::vector<const char*>{"softening_modulus", "yield_strain"}) {
+    if (l.has(other))
+      l.fail(other, std::string("belongs to method \"") +
+                        (second_gradient ? "nonlocal" : "second_gradient") + "\"");
+  }
+  if (second_gradient) {
     c.softening_modulus = l.in_range("softening_modulus", 1e-6, 1e15);
-  else
+    if (l.has("yield_strain")) {
+      c.gradient_yield_strain = l.in_range("yield_strain", 1e-6, 10.0);
+      if (c.dimension != 2)
+        l.fail("yield_strain", "is implemented in 2D only");
+    }
+  } else
     c.nonlocal_weight = l.in_range_or("nonlocal_weight", 0.0, 2.0, 1.0);
 }
 

@@ -128,10 +128,13 @@ struct MpmCase {
   double internal_length = 0.0;
   std::string internal_length_method = "second_gradient";
   double softening_modulus = 0.0;
+  //! The strain ε_y across ℓ beyond which the gradient relaxes (0: unbounded).
+  double gradient_yield_strain = 0.0;
   double nonlocal_weight = 1.0;
   bool has_second_gradient() const {
     return internal_length > 0.0 && internal_length_method == "second_gradient";
   }
+  bool has_bounded_gradient() const { return has_second_gradient() && gradient_yield_strain > 0.0; }
   bool fixed_time_step = false;
   double cfl = 0.5;
   double time_step = 0.0;

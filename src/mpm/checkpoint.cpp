@@ -16,6 +16,9 @@
 namespace mpm_lig::mpm {
 namespace {
 
+//! The bounded second gradient's relaxed part K and its dissipated energy.
+constexpr const char* kRelaxedGradient = "gradient_relaxed";
+
 namespace fs = std::filesystem;
 
 std::string material_name(const MpmCase& c, std::size_t m) {
@@ -146,6 +149,8 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
   file.write("deformation", flatten(p.deformation));
   file.write("stress", flatten(p.stress));
   file.write("volume", p.volume);
+  if (solver.second_gradient() && solver.second_gradient()->bounded())
+    file.write(kRelaxedGradient, solver.second_gradient()->relaxation_state(p.size()));
   std::vector<double> footings;
   for (const auto& f : solver.footings()) {
     footings.push_back(f.settlement());
@@ -260,6 +265,14 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
   p.volume = file.read("volume");
   if (p.volume.size() != p.size())
     throw std::runtime_error("checkpoint '" + dir + "' does not match the case's points");
+  if (SecondGradient<D>* gradient = solver.mutable_second_gradient();
+      gradient && gradient->bounded()) {
+    if (!file.has(kRelaxedGradient))
+      throw std::runtime_error("checkpoint '" + dir +
+                               "' has no relaxed gradient: it was not written with "
+                               "analysis.internal_length.yield_strain");
+    gradient->restore_relaxation(file.read(kRelaxedGradient), p.size());
+  }
   const std::vector<double> footings = file.read("footings");
   auto& rigid = solver.mutable_footings();
   if (footings.size() != rigid.size() * (2 + D))

@@ -103,6 +103,8 @@ std::vector<std::string> Recorder<D>::history_columns(const MpmCase& c) {
   }
   if (c.has_second_gradient())
     columns.push_back("gradient_energy");
+  if (c.has_bounded_gradient())
+    columns.push_back("gradient_dissipation");
   return columns;
 }
 
@@ -124,6 +126,8 @@ std::vector<double> Recorder<D>::history_row(const Solver<D>& solver,
     append_simple_shear(solver, shear, row);
   if (solver.has_second_gradient())
     row.push_back(solver.gradient_energy());
+  if (solver.has_second_gradient() && solver.second_gradient()->bounded())
+    row.push_back(solver.gradient_dissipation());
   return row;
 }
 

@@ -15,10 +15,14 @@ constexpr double kReachInCells = 1.5;
 }  // namespace
 
 template <int D>
-SecondGradient<D>::SecondGradient(double length, double softening_modulus)
-    : modulus_(modulus(length, softening_modulus)) {
+SecondGradient<D>::SecondGradient(double length, double softening_modulus, double yield_gradient)
+    : modulus_(modulus(length, softening_modulus)), yield_gradient_(yield_gradient) {
   if (!(modulus_ > 0.0) || !std::isfinite(modulus_))
     throw std::invalid_argument("SecondGradient: length and softening modulus must be > 0");
+  if (!(yield_gradient_ >= 0.0) || !std::isfinite(yield_gradient_))
+    throw std::invalid_argument("SecondGradient: the yield gradient must be >= 0");
+  if (D != 2 && yield_gradient_ > 0.0)
+    throw std::invalid_argument("SecondGradient: a yield gradient is 2D only");
 }
 
 template <int D>
@@ -99,6 +103,21 @@ std::array<Eigen::Matrix<double, D, D>, D> gradient_at(
   return gradient;
 }
 
+//! The rotation angle θ of a plane F (its polar rotation) and ∂θ/∂F.
+struct PlaneRotation {
+  Eigen::Matrix2d rotation;
+  Eigen::Matrix2d angle_derivative;
+};
+PlaneRotation plane_rotation_of(const Mat3& f) {
+  const double a = f(0, 0) + f(1, 1), b = f(1, 0) - f(0, 1);
+  const double m = a * a + b * b;
+  const double theta = std::atan2(b, a);
+  PlaneRotation r;
+  r.rotation << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
+  r.angle_derivative << -b / m, -a / m, a / m, -b / m;
+  return r;
+}
+
 }  // namespace
 
 template <int D>
@@ -114,6 +133,76 @@ const typename SecondGradient<D>::NeighbourLists& SecondGradient<D>::neighbours(
 }
 
 template <int D>
+std::array<typename SecondGradient<D>::Matrix, D> SecondGradient<D>::elastic_gradient(
+    const Particles<D>& particles, std::size_t p, const std::vector<Neighbour>& list) const {
+  std::array<Matrix, D> gradient = gradient_at(particles, p, list);
+  if constexpr (D == 2) {
+    if (!relaxed_.empty()) {
+      const Matrix rotation = plane_rotation_of(particles.deformation[p]).rotation;
+      for (int c = 0; c < D; ++c)
+        gradient[c] = rotation.transpose() * gradient[c] - relaxed_[p][c];
+    }
+  }
+  return gradient;
+}
+
+template <int D>
+void SecondGradient<D>::relax(const Particles<D>& particles, const Grid<D>& grid) {
+  if (!bounded())
+    return;
+  const NeighbourLists& lists = neighbours(particles, grid);
+  const std::size_t n = particles.size();
+  for (std::size_t p = 0; p < n; ++p) {
+    if (lists[p].empty())
+      continue;
+    std::array<Matrix, D> r = elastic_gradient(particles, p, lists[p]);
+    double squared = 0.0;
+    for (int c = 0; c < D; ++c)
+      squared += r[c].squaredNorm();
+    const double size = std::sqrt(squared);
+    if (size <= yield_gradient_)
+      continue;
+    if (relaxed_.empty()) {
+      // Until the first point yields the energy is the unbounded one, bit for bit.
+      std::array<Matrix, D> zero;
+      zero.fill(Matrix::Zero());
+      relaxed_.assign(n, zero);
+      r = elastic_gradient(particles, p, lists[p]);  // now in the point's rotated frame
+    }
+    const double excess = 1.0 - yield_gradient_ / size;
+    for (int c = 0; c < D; ++c)
+      relaxed_[p][c] += excess * r[c];
+    dissipated_ +=
+        0.5 * modulus_ * particles.volume0[p] * (squared - yield_gradient_ * yield_gradient_);
+  }
+}
+
+template <int D>
+std::vector<double> SecondGradient<D>::relaxation_state(std::size_t points) const {
+  constexpr std::size_t width = D * D * D;
+  std::vector<double> state(points * width + 1, 0.0);
+  for (std::size_t p = 0; p < relaxed_.size() && p < points; ++p)
+    for (int c = 0; c < D; ++c)
+      std::copy_n(relaxed_[p][c].data(), D * D, state.data() + p * width + c * D * D);
+  state.back() = dissipated_;
+  return state;
+}
+
+template <int D>
+void SecondGradient<D>::restore_relaxation(const std::vector<double>& state, std::size_t points) {
+  constexpr std::size_t width = D * D * D;
+  if (state.size() != points * width + 1)
+    throw std::runtime_error("the second gradient's relaxed part has " +
+                             std::to_string(state.size()) + " values, " +
+                             std::to_string(points * width + 1) + " expected");
+  relaxed_.resize(points);
+  for (std::size_t p = 0; p < points; ++p)
+    for (int c = 0; c < D; ++c)
+      relaxed_[p][c] = Eigen::Map<const Matrix>(state.data() + p * width + c * D * D);
+  dissipated_ = state.back();
+}
+
+template <int D>
 void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<D>& grid,
                                       std::vector<Matrix>& out) const {
   const std::size_t n = particles.size();
@@ -123,8 +212,23 @@ void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<
   for (std::size_t p = 0; p < n; ++p) {
     if (lists[p].empty())
       continue;
-    const std::array<Matrix, D> gradient = gradient_at(particles, p, lists[p]);
+    std::array<Matrix, D> gradient = elastic_gradient(particles, p, lists[p]);
     const double scale = modulus_ * particles.volume0[p];
+    if constexpr (D == 2) {
+      if (!relaxed_.empty()) {
+        // E_p = ½ D V⁰ |r|², r = Rᵀ∇₀F − K: through ∇₀F as below with R r, and through the
+        // rotation, ∂E_p/∂θ = −D V⁰ Σ_c r[c] : (J K[c]) (J the quarter turn; r : J r = 0).
+        const PlaneRotation rotation = plane_rotation_of(particles.deformation[p]);
+        Matrix quarter_turn;
+        quarter_turn << 0.0, -1.0, 1.0, 0.0;
+        double by_angle = 0.0;
+        for (int c = 0; c < D; ++c) {
+          by_angle -= (gradient[c].array() * (quarter_turn * relaxed_[p][c]).array()).sum();
+          gradient[c] = rotation.rotation * gradient[c];
+        }
+        pi[p] += scale * by_angle * rotation.angle_derivative;
+      }
+    }
     for (const Neighbour& nb : lists[p]) {
       Matrix share = Matrix::Zero();
       for (int c = 0; c < D; ++c)
@@ -144,7 +248,9 @@ double SecondGradient<D>::energy(const Particles<D>& particles, const Grid<D>& g
   const NeighbourLists& lists = neighbours(particles, grid);
   double sum = 0.0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
-    const std::array<Matrix, D> gradient = gradient_at(particles, p, lists[p]);
+    if (lists[p].empty())
+      continue;
+    const std::array<Matrix, D> gradient = elastic_gradient(particles, p, lists[p]);
     double squared = 0.0;
     for (int c = 0; c < D; ++c)
       squared += gradient[c].squaredNorm();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -28,6 +29,15 @@ namespace mpm_lig::mpm {
 //! σ − D γ'' = const makes the band's strain increment a cosine of full width at half height
 //! ℓ = π √(D / G_s): the case gives ℓ and G_s, D = G_s (ℓ/π)².
 //!
+//! With a yield gradient κ_y (`internal_length.yield_strain` ε_y over ℓ; 2D) the energy is
+//! E = ½ D Σ_p V⁰_p |R_pᵀ∇₀F_p − K_p|², R_p the polar rotation of F_p: K_p, the gradient's
+//! relaxed part, follows R_pᵀ∇₀F_p wherever the difference exceeds κ_y (relax(), a return to
+//! the limit after each step), so the stored energy stays below ½ D κ_y² Σ V⁰ and the work a
+//! band's slip puts into its gradient beyond the limit is dissipated (dissipated()). Without it
+//! the energy of the total gradient grows with the slip squared. K is held in the point's
+//! rotated frame, so a rigid rotation changes nothing (a K in the fixed frame would see a
+//! rotated band's whole gradient as new). K is state: checkpointed, the same on every rank.
+//!
 //! What it keeps: the forces sum to zero (Σ_i ∇N_i = 0: momentum); E depends on F only
 //! through |∇₀F|, unchanged by a rigid rotation F → Q F, so a rotation adds no force and the
 //! torque of the forces vanishes; no state of its own (F and the reference positions are the
@@ -38,8 +48,9 @@ class SecondGradient {
  public:
   using Matrix = Eigen::Matrix<double, D, D>;
 
-  //! D [Pa m²] from the length ℓ [m] and the softening modulus G_s [Pa].
-  SecondGradient(double length, double softening_modulus);
+  //! D [Pa m²] from the length ℓ [m] and the softening modulus G_s [Pa]; a yield gradient
+  //! κ_y [1/m] > 0 bounds the stored gradient (0: unbounded).
+  SecondGradient(double length, double softening_modulus, double yield_gradient = 0.0);
   static double modulus(double length, double softening_modulus);
   double modulus() const { return modulus_; }
 
@@ -54,8 +65,22 @@ class SecondGradient {
   //! S_p for every point from the points' reference positions, initial volumes and F.
   void force_tensors(const Particles<D>& particles, const Grid<D>& grid,
                      std::vector<Matrix>& out) const;
-  //! E = ½ D Σ_p V⁰_p |∇₀F_p|² [J per unit thickness in 2D]: what force_tensors differentiates.
+  //! E = ½ D Σ_p V⁰_p |R_pᵀ∇₀F_p − K_p|² (K = 0 unbounded: |∇₀F_p|²) [J per unit thickness
+  //! in 2D]: what force_tensors differentiates.
   double energy(const Particles<D>& particles, const Grid<D>& grid) const;
+
+  //! With a yield gradient: K_p ← K_p + (1 − κ_y/|r|) r where r = R_pᵀ∇₀F_p − K_p exceeds it (after
+  //! the step's deformation), the energy given up booked as dissipated. Nothing without one.
+  void relax(const Particles<D>& particles, const Grid<D>& grid);
+  //! Zero every K_p: a new reference configuration (the main stage's start).
+  void forget_relaxation() { relaxed_.clear(); }
+  bool bounded() const { return yield_gradient_ > 0.0; }
+  //! The energy the relaxations gave up so far [J per unit thickness in 2D].
+  double dissipated() const { return dissipated_; }
+  //! K as D·D·D doubles a point and the dissipated energy last (a checkpoint's record), and
+  //! back; `points` points.
+  std::vector<double> relaxation_state(std::size_t points) const;
+  void restore_relaxation(const std::vector<double>& state, std::size_t points);
 
  private:
   //! The neighbour lists of the points' reference configuration, built again only when it is
@@ -63,7 +88,14 @@ class SecondGradient {
   //! reference does not move within a stage, so the lists are built once, not every step.
   const NeighbourLists& neighbours(const Particles<D>& particles, const Grid<D>& grid) const;
 
+  //! ∇₀F_p ([c] = ∂F/∂X_c), or with a relaxed part R_pᵀ∇₀F_p − K_p.
+  std::array<Matrix, D> elastic_gradient(const Particles<D>& particles, std::size_t p,
+                                         const std::vector<Neighbour>& list) const;
+
   double modulus_;
+  double yield_gradient_;
+  std::vector<std::array<Matrix, D>> relaxed_;  // K_p; empty: all zero
+  double dissipated_ = 0.0;
   mutable std::vector<Eigen::Matrix<double, D, 1>> built_for_;  // reference positions
   mutable double built_reach_ = 0.0;
   mutable NeighbourLists neighbours_;

@@ -83,7 +83,8 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
       constraints_(c.constraints, grid_),
       kinematics_(kinematics_operators<D>(c)),
       second_gradient_(c.has_second_gradient() ? std::make_unique<SecondGradient<D>>(
-                                                     c.internal_length, c.softening_modulus)
+                                                     c.internal_length, c.softening_modulus,
+                                                     c.gradient_yield_strain / c.internal_length)
                                                : nullptr),
       tractions_(c.tractions),
       gravity_(Eigen::Map<const Vec>(c.gravity.data())),
@@ -178,6 +179,8 @@ void Solver<D>::begin_main_stage() {
     particles_.velocity[p].setZero();
     particles_.reference[p] = particles_.position[p];
   }
+  if (second_gradient_)
+    second_gradient_->forget_relaxation();
 }
 
 template <int D>
@@ -194,6 +197,8 @@ void Solver<D>::step() {
   compute_deformation();
   apply_kinematics();
   accumulate_deformation();
+  if (second_gradient_)
+    second_gradient_->relax(particles_, grid_);
   update_stress();
   for (auto& f : footings_)
     f.advance(time_, prescribed_scale_, dt_);
@@ -446,6 +451,11 @@ double Solver<D>::kinetic_energy() const {
 template <int D>
 double Solver<D>::gradient_energy() const {
   return second_gradient_ ? second_gradient_->energy(particles_, grid_) : 0.0;
+}
+
+template <int D>
+double Solver<D>::gradient_dissipation() const {
+  return second_gradient_ ? second_gradient_->dissipated() : 0.0;
 }
 
 template <int D>

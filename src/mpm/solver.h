@@ -73,7 +73,12 @@ class Solver {
   //! The internal length's second-gradient energy (0 without one): what the footing's work
   //! stores in the gradient rather than spends in the materials.
   double gradient_energy() const;
+  //! What the bounded second gradient's relaxations dissipated so far (0 unbounded).
+  double gradient_dissipation() const;
   bool has_second_gradient() const { return second_gradient_ != nullptr; }
+  //! The second gradient, for its checkpoint (null without one).
+  SecondGradient<D>* mutable_second_gradient() { return second_gradient_.get(); }
+  const SecondGradient<D>* second_gradient() const { return second_gradient_.get(); }
   double total_mass() const;
   Vec total_momentum() const;
 

@@ -53,16 +53,14 @@ TEST(SecondGradient, ModulusGivesTheBandWidthAsFullWidthAtHalfHeight) {
   EXPECT_NEAR(std::acos(-1.0) * std::sqrt(d / 4e5), 0.1, 1e-15);
 }
 
-TEST(SecondGradient, ForceTensorsAreTheEnergysDerivative) {
-  std::mt19937 random(7);
-  const Particles<2> particles = lattice(random);
-  const SecondGradient<2> energy(0.1, 1e6);
+//! Along F_p ← (I + ε L_p) F_p, random L, `energy` changes by ε Σ_p S_p : L_p to first order.
+void expect_forces_are_the_derivative(const SecondGradient<2>& energy,
+                                      const Particles<2>& particles, std::mt19937& random) {
   std::vector<Matrix> s;
   energy.force_tensors(particles, kGrid, s);
   ASSERT_EQ(s.size(), particles.size());
   std::normal_distribution<double> normal;
   for (int trial = 0; trial < 3; ++trial) {
-    // Along F_p ← (I + ε L_p) F_p the energy changes by ε Σ_p S_p : L_p to first order.
     std::vector<Matrix> l(particles.size());
     double predicted = 0.0;
     for (std::size_t p = 0; p < particles.size(); ++p) {
@@ -85,6 +83,35 @@ TEST(SecondGradient, ForceTensorsAreTheEnergysDerivative) {
   }
 }
 
+//! The body turned rigidly (F → Q F, positions about the centre) keeps `energy`'s energy and
+//! turns its force tensors: S → Q S Qᵀ.
+void expect_rotation_changes_nothing(const SecondGradient<2>& energy,
+                                     const Particles<2>& particles) {
+  Particles<2> turned = particles;
+  const Mat3 q = plane_rotation(1.1);
+  for (std::size_t p = 0; p < turned.size(); ++p) {
+    turned.deformation[p] = q * turned.deformation[p];
+    turned.position[p] =
+        Vec2(0.15, 0.15) + q.topLeftCorner<2, 2>() * (turned.position[p] - Vec2(0.15, 0.15));
+  }
+  const double e = energy.energy(particles, kGrid);
+  EXPECT_GT(e, 0.0);
+  EXPECT_NEAR(energy.energy(turned, kGrid), e, 1e-12 * e);
+  std::vector<Matrix> s, s_turned;
+  energy.force_tensors(particles, kGrid, s);
+  energy.force_tensors(turned, kGrid, s_turned);
+  const Matrix q2 = q.topLeftCorner<2, 2>();
+  for (std::size_t p = 0; p < s.size(); ++p)
+    EXPECT_NEAR((s_turned[p] - q2 * s[p] * q2.transpose()).norm(), 0.0, 1e-9 * s[p].norm() + 1e-20)
+        << p;
+}
+
+TEST(SecondGradient, ForceTensorsAreTheEnergysDerivative) {
+  std::mt19937 random(7);
+  const Particles<2> particles = lattice(random);
+  expect_forces_are_the_derivative(SecondGradient<2>(0.1, 1e6), particles, random);
+}
+
 TEST(SecondGradient, UniformDeformationHasNoEnergyAndNoForce) {
   std::mt19937 random(3);
   Particles<2> particles = lattice(random);
@@ -100,25 +127,75 @@ TEST(SecondGradient, UniformDeformationHasNoEnergyAndNoForce) {
 
 TEST(SecondGradient, RigidRotationKeepsTheEnergyAndTurnsTheForces) {
   std::mt19937 random(11);
+  expect_rotation_changes_nothing(SecondGradient<2>(0.1, 1e6), lattice(random));
+}
+
+//! A bounded second gradient on the lattice, relaxed once at the yield gradient `yield`
+//! (the lattice's gradients are about 0.3 per metre).
+SecondGradient<2> relaxed_once(const Particles<2>& particles, double yield) {
+  SecondGradient<2> energy(0.1, 1e6, yield);
+  energy.relax(particles, kGrid);
+  return energy;
+}
+
+// Relaxing returns every point whose gradient exceeds the yield to the yield: the energy is at
+// most ½ D κ² Σ V⁰ and what it gave up is booked as dissipated, exactly; a yield above every
+// gradient relaxes nothing (the unbounded energy and forces, bit for bit).
+TEST(SecondGradient, RelaxingBoundsTheEnergyAndBooksWhatItGaveUp) {
+  std::mt19937 random(5);
   const Particles<2> particles = lattice(random);
-  Particles<2> turned = particles;
-  const Mat3 q = plane_rotation(1.1);
-  for (std::size_t p = 0; p < turned.size(); ++p) {
-    turned.deformation[p] = q * turned.deformation[p];  // F → Q F: the same body turned
-    turned.position[p] =
-        Vec2(0.15, 0.15) + q.topLeftCorner<2, 2>() * (turned.position[p] - Vec2(0.15, 0.15));
-  }
-  const SecondGradient<2> energy(0.1, 1e6);
-  const double e = energy.energy(particles, kGrid);
-  EXPECT_GT(e, 0.0);
-  EXPECT_NEAR(energy.energy(turned, kGrid), e, 1e-12 * e);
-  std::vector<Matrix> s, s_turned;
-  energy.force_tensors(particles, kGrid, s);
-  energy.force_tensors(turned, kGrid, s_turned);
-  const Matrix q2 = q.topLeftCorner<2, 2>();
+  const SecondGradient<2> unbounded(0.1, 1e6);
+  const double before = unbounded.energy(particles, kGrid);
+  const double yield = 0.1;
+  const SecondGradient<2> bounded = relaxed_once(particles, yield);
+  double volume = 0.0;
+  for (const double v : particles.volume0)
+    volume += v;
+  const double after = bounded.energy(particles, kGrid);
+  EXPECT_LE(after, 0.5 * unbounded.modulus() * yield * yield * volume * (1.0 + 1e-12));
+  EXPECT_GT(bounded.dissipated(), 0.1 * before);
+  EXPECT_NEAR(after + bounded.dissipated(), before, 1e-12 * before);
+  const SecondGradient<2> loose = relaxed_once(particles, 1e3);
+  EXPECT_EQ(loose.dissipated(), 0.0);
+  EXPECT_EQ(loose.energy(particles, kGrid), before);
+  std::vector<Matrix> s, s_loose;
+  unbounded.force_tensors(particles, kGrid, s);
+  loose.force_tensors(particles, kGrid, s_loose);
   for (std::size_t p = 0; p < s.size(); ++p)
-    EXPECT_NEAR((s_turned[p] - q2 * s[p] * q2.transpose()).norm(), 0.0, 1e-9 * s[p].norm() + 1e-20)
-        << p;
+    EXPECT_EQ((s[p] - s_loose[p]).norm(), 0.0) << p;
+}
+
+// With a relaxed part the forces are still the energy's derivative (its rotation's share
+// included), and a rigid rotation changes nothing: the relaxed part turns with the points.
+TEST(SecondGradient, RelaxedForcesAreTheEnergysDerivativeAndObjective) {
+  std::mt19937 random(9);
+  const Particles<2> particles = lattice(random);
+  const SecondGradient<2> bounded = relaxed_once(particles, 0.1);
+  ASSERT_GT(bounded.dissipated(), 0.0);
+  // Away from the state it was relaxed in, so that the relaxed part is not parallel to r.
+  Particles<2> later = particles;
+  for (std::size_t p = 0; p < later.size(); ++p)
+    later.deformation[p] = plane_rotation(0.2 * later.position[p][0]) * later.deformation[p];
+  expect_forces_are_the_derivative(bounded, later, random);
+  expect_rotation_changes_nothing(bounded, later);
+}
+
+// A checkpoint's record of the relaxed part gives another instance the same energy, forces and
+// dissipation, bit for bit.
+TEST(SecondGradient, RelaxationStateRoundTrips) {
+  std::mt19937 random(13);
+  const Particles<2> particles = lattice(random);
+  const SecondGradient<2> bounded = relaxed_once(particles, 0.1);
+  SecondGradient<2> restored(0.1, 1e6, 0.1);
+  restored.restore_relaxation(bounded.relaxation_state(particles.size()), particles.size());
+  EXPECT_EQ(restored.dissipated(), bounded.dissipated());
+  EXPECT_EQ(restored.energy(particles, kGrid), bounded.energy(particles, kGrid));
+  std::vector<Matrix> s, s_restored;
+  bounded.force_tensors(particles, kGrid, s);
+  restored.force_tensors(particles, kGrid, s_restored);
+  for (std::size_t p = 0; p < s.size(); ++p)
+    EXPECT_EQ((s[p] - s_restored[p]).norm(), 0.0) << p;
+  EXPECT_THROW(restored.restore_relaxation({1.0, 2.0}, particles.size()), std::runtime_error);
 }
 
 TEST(SecondGradient, MovingThePointsAtFixedDeformationDoesNoWork) {

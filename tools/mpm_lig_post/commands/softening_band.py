@@ -2,7 +2,8 @@
 width of its shear band and its load-displacement curve (docs/methods.md §7).
 
 usage: softening_band.py -o OUT_DIR [--mpm-lig build/mpm_lig] [--length L]
-                         [--refinements 2 4 8] [--weights M ...] [--dpi N]
+                         [--refinements 2 4 8] [--weights M ...] [--yield-strains E ...]
+                         [--dpi N]
 
 The layer: 0.5 m high, periodic along x, von Mises (E 10 MPa, nu 0.3, q_y 100 kPa) softening
 linearly with the deviatoric plastic strain (H = 0.1 x 3G) to half its yield stress; its base
@@ -10,8 +11,11 @@ fixed, its top pushed sideways to 0.04 m over 1 s (a ramp of 0.05 s), damping 0.
 just above mid-height is 2 % weaker: the imperfection, one cell wide on every mesh. For each
 mesh h = L/n (n in --refinements, L the length, default 0.1 m) the layer runs without an
 internal length, with `analysis.internal_length` L by the second gradient (its softening
-modulus the layer's, G/9) and, with --weights, by the non-local average at each weight m. Measured on each run: the band's width (the extent along y where the final
-plastic strain exceeds half its largest value, interpolated between point rows), the peak
+modulus the layer's, G/9), with --yield-strains by the bounded second gradient at each
+yield strain ε_y, and, with --weights, by the non-local average at each weight m. Measured on
+each run: the band's width while it forms, from the peak to half-softening, and late, from
+there to the end (the extent along y where the plastic strain's increment exceeds half its
+largest value, interpolated between point rows), the peak
 shear stress and the mean shear stress over the last half of the displacement (the top's
 reaction over the layer's width). Prints a table; writes OUT_DIR/softening_band.json and
 OUT_DIR/softening_band.png (shear stress against displacement, plastic-strain profiles).
@@ -51,9 +55,9 @@ SOFTENING_TANGENT = SHEAR * (SOFTENING / 3.0) / (SHEAR - SOFTENING / 3.0)
 # gradient.
 
 
-def layer_case(cells_y, length, method, weight):
+def layer_case(cells_y, length, method, weight, yield_strain=None):
     """The layer on `cells_y` cells of height (two columns, periodic along x); with an
-    internal length by `method` when `length` is given."""
+    internal length by `method` when `length` is given (bounded at `yield_strain`)."""
     h = HEIGHT / cells_y
     width = 2.0 * h
     weak = cells_y // 2  # the weak cell: rows [weak h, (weak + 1) h]
@@ -68,6 +72,8 @@ def layer_case(cells_y, length, method, weight):
     elif length:
         analysis["internal_length"] = {"length": length, "method": method,
                                        "softening_modulus": SOFTENING_TANGENT}
+        if yield_strain:
+            analysis["internal_length"]["yield_strain"] = yield_strain
     return {
         "title": f"softening layer, h = {h:g} m" + (f", internal length {length:g} m, {method}"
                                                     if length else ", local"),
@@ -149,6 +155,7 @@ def run_layer(mpm_lig, case, folder):
         at_half = fields.steps[min(len(times) - 1, int(np.searchsorted(times, t_half)))]
         t0, y, strain0 = point_strain(fields, at_peak)
         t1, y1, strain1 = point_strain(fields, at_half)
+        t2, y2, strain2 = point_strain(fields, fields.steps[-1])
     finally:
         fields.close()
     # What the top's work stores in the second gradient at the end (a band that has slipped
@@ -160,6 +167,7 @@ def run_layer(mpm_lig, case, folder):
         share = float(history["gradient_energy"][-1]) / work
     return {"displacement": displacement, "stress": stress, "y": y1,
             "increment": strain1 - strain0, "from_time": t0, "to_time": t1,
+            "y_late": y2, "increment_late": strain2 - strain1, "end_time": t2,
             "gradient_energy_share": share}
 
 
@@ -183,10 +191,11 @@ def band_width(y, strain):
 
 def summarise(result):
     width, rows, profile = band_width(result["y"], result["increment"])
+    late, _, _ = band_width(result["y_late"], result["increment_late"])
     u, tau = result["displacement"], result["stress"]
     peak = int(np.argmax(tau))
     window = (u >= u[peak]) & (u <= u[peak] + 0.25 * DISPLACEMENT)
-    return {"band_width": width, "band_from_time": result["from_time"],
+    return {"band_width": width, "band_width_late": late, "band_from_time": result["from_time"],
             "band_to_time": result["to_time"], "peak_stress": float(tau[peak]),
             "peak_displacement": float(u[peak]),
             "mean_stress_post_peak": float(tau[window].mean()),
@@ -207,6 +216,9 @@ def main():
     p.add_argument("--weights", type=cli.non_negative, nargs="*", default=[],
                    help="also the method nonlocal at these non-local weights m (default: "
                    "none; 1 and 0.5 show why it is not the regularisation)")
+    p.add_argument("--yield-strains", type=cli.positive, nargs="*", default=[],
+                   help="also the second gradient bounded at these yield strains ε_y "
+                   "(analysis.internal_length.yield_strain; default: none)")
     p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
     if a.length > 0.1:
@@ -226,18 +238,20 @@ def main():
     if os.path.isdir(out) and os.listdir(out):
         raise InputError(f"{out}: not empty (choose a new folder)")
     os.makedirs(out, exist_ok=True)
-    variants = [("local", None, None, None), ("second_gradient", a.length, "second_gradient",
-                                              None)]
-    variants += [(f"nonlocal_m{m:g}", a.length, "nonlocal", m) for m in a.weights]
+    variants = [("local", None, None, None, None),
+                ("second_gradient", a.length, "second_gradient", None, None)]
+    variants += [(f"bounded_e{e:g}", a.length, "second_gradient", None, e)
+                 for e in a.yield_strains]
+    variants += [(f"nonlocal_m{m:g}", a.length, "nonlocal", m, None) for m in a.weights]
     report = {"length": a.length, "height": HEIGHT, "displacement": DISPLACEMENT,
               "yield_stress": YIELD, "softening_modulus": SOFTENING,
               "residual_yield_stress": RESIDUAL, "runs": {}}
     curves = {}
-    for name, length, method, weight in variants:
+    for name, length, method, weight, yield_strain in variants:
         for cells, n in zip(meshes, a.refinements):
             key = f"{name}_h{n}"
             print(f"running {key}: h = length / {n} ({cells} cells)", flush=True)
-            result = run_layer(mpm_lig, layer_case(cells, length, method, weight),
+            result = run_layer(mpm_lig, layer_case(cells, length, method, weight, yield_strain),
                                os.path.join(out, key))
             curves[key] = result
             report["runs"][key] = dict(summarise(result), variant=name, refinement=n,
@@ -250,14 +264,15 @@ def main():
 
 def print_table(report):
     length = report["length"]
-    print("| run | h | band width / length | band width / h | peak tau [kPa] | "
-          "mean tau over the quarter after the peak [kPa] | mean tau, last half [kPa] | "
-          "gradient energy / work at the end |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| run | h | band width / length | band width / h | late band width / length | "
+          "peak tau [kPa] | mean tau over the quarter after the peak [kPa] | "
+          "mean tau, last half [kPa] | gradient energy / work at the end |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for key, r in report["runs"].items():
         share = r["gradient_energy_share"]
         print(f"| {r['variant']} | length/{r['refinement']} | {r['band_width'] / length:.2f} | "
-              f"{r['band_width'] / r['cell']:.2f} | {r['peak_stress'] / 1e3:.2f} | "
+              f"{r['band_width'] / r['cell']:.2f} | {r['band_width_late'] / length:.2f} | "
+              f"{r['peak_stress'] / 1e3:.2f} | "
               f"{r['mean_stress_post_peak'] / 1e3:.2f} | {r['mean_stress_late'] / 1e3:.2f} | "
               f"{'-' if share is None else f'{share:.3f}'} |")
 
