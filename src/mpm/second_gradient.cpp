@@ -1,5 +1,6 @@
 #include "mpm/second_gradient.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -195,11 +196,16 @@ void SecondGradient<D>::restore_relaxation(const std::vector<double>& state, std
     throw std::runtime_error("the second gradient's relaxed part has " +
                              std::to_string(state.size()) + " values, " +
                              std::to_string(points * width + 1) + " expected");
+  dissipated_ = state.back();
+  relaxed_.clear();
+  // All zero: no point had yielded, and the energy stays the unbounded one's arithmetic, as in
+  // the run that wrote it (a point that yields gets a non-zero relaxed part).
+  if (std::all_of(state.begin(), state.end() - 1, [](double v) { return v == 0.0; }))
+    return;
   relaxed_.resize(points);
   for (std::size_t p = 0; p < points; ++p)
     for (int c = 0; c < D; ++c)
       relaxed_[p][c] = Eigen::Map<const Matrix>(state.data() + p * width + c * D * D);
-  dissipated_ = state.back();
 }
 
 template <int D>

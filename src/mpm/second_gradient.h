@@ -72,8 +72,12 @@ class SecondGradient {
   //! With a yield gradient: K_p ← K_p + (1 − κ_y/|r|) r where r = R_pᵀ∇₀F_p − K_p exceeds it (after
   //! the step's deformation), the energy given up booked as dissipated. Nothing without one.
   void relax(const Particles<D>& particles, const Grid<D>& grid);
-  //! Zero every K_p: a new reference configuration (the main stage's start).
-  void forget_relaxation() { relaxed_.clear(); }
+  //! Zero every K_p and the dissipation booked: a new reference configuration (the main
+  //! stage's start).
+  void forget_relaxation() {
+    relaxed_.clear();
+    dissipated_ = 0.0;
+  }
   bool bounded() const { return yield_gradient_ > 0.0; }
   //! The energy the relaxations gave up so far [J per unit thickness in 2D].
   double dissipated() const { return dissipated_; }

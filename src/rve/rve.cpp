@@ -211,8 +211,10 @@ double shear_of_strain(const Mat3& strain, int dimension) {
   const double mean = deviator.topLeftCorner(dimension, dimension).trace() / dimension;
   for (int i = 0; i < dimension; ++i)
     deviator(i, i) -= mean;
-  if (dimension == 2)
-    deviator.row(2).setZero(), deviator.col(2).setZero();
+  if (dimension == 2) {
+    deviator.row(2).setZero();
+    deviator.col(2).setZero();
+  }
   return std::sqrt(2.0) * deviator.norm();
 }
 
