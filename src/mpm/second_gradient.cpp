@@ -218,19 +218,21 @@ void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<
   for (std::size_t p = 0; p < n; ++p) {
     if (lists[p].empty())
       continue;
-    std::array<Matrix, D> gradient = elastic_gradient(particles, p, lists[p]);
+    std::array<Matrix, D> gradient = gradient_at(particles, p, lists[p]);
     const double scale = modulus_ * particles.volume0[p];
     if constexpr (D == 2) {
       if (!relaxed_.empty()) {
         // E_p = ½ D V⁰ |r|², r = Rᵀ∇₀F − K: through ∇₀F as below with R r, and through the
         // rotation, ∂E_p/∂θ = −D V⁰ Σ_c r[c] : (J K[c]) (J the quarter turn; r : J r = 0).
+        // The rotation once a point: r is elastic_gradient's, formed here from it.
         const PlaneRotation rotation = plane_rotation_of(particles.deformation[p]);
         Matrix quarter_turn;
         quarter_turn << 0.0, -1.0, 1.0, 0.0;
         double by_angle = 0.0;
         for (int c = 0; c < D; ++c) {
-          by_angle -= (gradient[c].array() * (quarter_turn * relaxed_[p][c]).array()).sum();
-          gradient[c] = rotation.rotation * gradient[c];
+          const Matrix r = rotation.rotation.transpose() * gradient[c] - relaxed_[p][c];
+          by_angle -= (r.array() * (quarter_turn * relaxed_[p][c]).array()).sum();
+          gradient[c] = rotation.rotation * r;
         }
         pi[p] += scale * by_angle * rotation.angle_derivative;
       }
