@@ -4,7 +4,7 @@
 #include <cmath>
 #include <iterator>
 
-#include "coupling/plane_strain.h"
+#include "core/plane_strain.h"
 
 namespace mpm_lig::coupling {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <iterator>
 
-#include "coupling/plane_strain.h"
+#include "core/plane_strain.h"
 
 namespace mpm_lig::coupling {
 
@@ -34,11 +34,6 @@ constexpr double kMostSamples = 10.0;
 //! to tell its direction.
 constexpr double kMeasurableShear = 0.25;
 constexpr int kTensorValues = 6 * 9;
-
-//! Engineering shear strain γ = √2 |e| of a deviatoric strain e (γ of a simple shear).
-double shear_of(const Mat3& deviatoric) {
-  return std::sqrt(2.0) * deviatoric.norm();
-}
 
 double stress_ratio(const Mat3& stress, int d) {
   const double p = mean_pressure(stress, d);
@@ -111,11 +106,11 @@ bool SteadyFlow::accumulate(std::size_t point, const Mat3& dF) {
   pending_[point] = dF * pending_[point];
   r.flow_volumetric += e.volumetric;
   anchor_[point] += flow_bulk(point) * e.volumetric * identity_d(d);
-  const double shear = shear_of(e.deviatoric);
+  const double shear = engineering_shear(e.deviatoric);
   // The path's direction is that of the shear since the last DEM update (up to check_every
   // increments): one increment of a noisy velocity field does not turn a flow.
   const Mat3 path = strain_parts(pending_[point], d).deviatoric;
-  const bool measurable = shear_of(path) >= kMeasurableShear * r.typical_shear;
+  const bool measurable = engineering_shear(path) >= kMeasurableShear * r.typical_shear;
   r.checking = 1.0;
   if (measurable && cosine(path, direction_[point]) < std::cos(spec_.turn_deg * kDegree)) {
     stats_.turns += 1.0;
@@ -186,7 +181,7 @@ void SteadyFlow::add_to_window(std::size_t point, const Mat3& increment, const M
   const int d = dimension_;
   Row& r = row(point);
   const StrainParts e = strain_parts(increment, d);
-  const double shear = shear_of(e.deviatoric);
+  const double shear = engineering_shear(e.deviatoric);
   Window& w = r.window;
   w.shear += shear;
   w.volumetric += e.volumetric;

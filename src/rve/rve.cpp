@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/plane_strain.h"
 #include "dem/file_name.h"
 #include "dem/restart_check.h"
 #include "rve/engine_input.h"
@@ -207,15 +208,10 @@ void Rve::restore(const State& s) {
 }
 
 double shear_of_strain(const Mat3& strain, int dimension) {
-  Mat3 deviator = 0.5 * (strain + strain.transpose());
-  const double mean = deviator.topLeftCorner(dimension, dimension).trace() / dimension;
-  for (int i = 0; i < dimension; ++i)
-    deviator(i, i) -= mean;
-  if (dimension == 2) {
-    deviator.row(2).setZero();
-    deviator.col(2).setZero();
-  }
-  return std::sqrt(2.0) * deviator.norm();
+  const Mat3 in_plane = plane::in_plane(0.5 * (strain + strain.transpose()), dimension);
+  const double volumetric = plane::trace_d(in_plane, dimension);
+  return plane::engineering_shear(in_plane -
+                                  (volumetric / dimension) * plane::identity_d(dimension));
 }
 
 int substeps_for_increment(const RveSpec& spec, const Mat3& effective_increment, double mean_stress,

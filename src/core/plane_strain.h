@@ -1,12 +1,14 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/tensor.h"
 
 //! Small-strain pieces of a deformation increment in the first `d` axes (the plane of a 2D
-//! packing, all three in 3D), shared by the predictions of QuietPoints and SteadyFlow.
-namespace mpm_lig::coupling::plane {
+//! packing, all three in 3D), shared by the predictions of QuietPoints and SteadyFlow and the
+//! RVE's sub-step rule.
+namespace mpm_lig::plane {
 
 //! Trace over the first `d` axes.
 inline double trace_d(const Mat3& a, int d) {
@@ -43,6 +45,11 @@ inline StrainParts strain_parts(const Mat3& increment, int d) {
   return {strain, volumetric, strain - (volumetric / d) * identity_d(d)};
 }
 
+//! Engineering shear strain γ = √2 |e| of a deviatoric strain e (γ of a simple shear).
+inline double engineering_shear(const Mat3& deviatoric) {
+  return std::sqrt(2.0) * deviatoric.norm();
+}
+
 //! |prediction - stress| / |stress|, the stress's size floored at `floor` [Pa] so that the
 //! error of a prediction near zero stress stays finite.
 inline double relative_error(const Mat3& prediction, const Mat3& stress, double floor) {
@@ -56,4 +63,4 @@ inline Mat3 spin_of(const Mat3& stress, const Mat3& increment, int d) {
   return omega * stress - stress * omega;
 }
 
-}  // namespace mpm_lig::coupling::plane
+}  // namespace mpm_lig::plane
