@@ -1,5 +1,6 @@
 """Checks of tools/compare_cost.py on footing runs of known load curves: the particle-steps ratio
-and the plateau / peak errors against the reference; bad input (exit 2, named).
+and the plateau / peak errors against the reference; with --sets, each setting's signed errors
+against its own set's reference, the sets' scatter and the verdicts; bad input (exit 2, named).
 
 usage: check_compare_cost.py WORK_DIR"""
 import json
@@ -70,7 +71,48 @@ def main():
     r = subprocess.run(["/usr/bin/python3", TOOL, os.path.join(work, "ref"),
                         os.path.join(work, "nowhere")], capture_output=True, text=True)
     expect(r.returncode == 2 and "nowhere: no such output directory" in r.stderr, r.stderr)
+    check_sets(work, out)
     print("compare_cost: ok")
+
+
+def check_sets(work, out):
+    """Three packing sets whose reference plateaus are 10, 11 and 12 (scatter 1/11 = 9.09 %):
+    a setting off by +2, +3, +4 % on them is within and biased (mean 3 % against t 4.303 times
+    its standard error 0.577 %), one off by +20, -20, +1 % is outside and not biased."""
+    case = os.path.join(work, "ref", "case.json")
+    levels = (10.0, 11.0, 12.0)
+    dirs = []
+    for name, factors in (("ref", (1.0, 1.0, 1.0)), ("close", (1.02, 1.03, 1.04)),
+                          ("wild", (1.2, 0.8, 1.01))):
+        for k, (level, f) in enumerate(zip(levels, factors)):
+            d = os.path.join(work, "sets", f"{name}_{k}")
+            footing_run(d, level * f, level * f, 1e9 * (k + 1) * (0.5 if name != "ref" else 1))
+            dirs.append(d)
+    r = subprocess.run(["/usr/bin/python3", TOOL, *dirs, "--case", case, "--sets", "3",
+                        "--json", out], capture_output=True, text=True)
+    expect(r.returncode == 0, f"--sets: exit {r.returncode}: {r.stderr}")
+    result = json.load(open(out))
+    plateau = "plateau q/q_s"
+    expect(abs(result["scatter"][plateau] - 1.0 / 11.0) < 1e-12,
+           f"scatter {result['scatter'][plateau]}")
+    close, wild = result["settings"]
+    work_ratio = close["particle_steps_ratio"]
+    expect(abs(work_ratio - 0.5) < 1e-12, f"work {work_ratio}")
+    errors = [s["errors"][plateau] for s in close["sets"]]
+    expect(all(abs(e - x) < 1e-9 for e, x in zip(errors, (0.02, 0.03, 0.04))), f"errors {errors}")
+    v = close["verdicts"][plateau]
+    expect(v["within"] is True and v["bias"] is True and abs(v["mean"] - 0.03) < 1e-9 and
+           abs(v["standard_error"] - 0.01 / 3 ** 0.5) < 1e-9, f"close verdict {v}")
+    v = wild["verdicts"][plateau]
+    expect(v["within"] is False and v["bias"] is False, f"wild verdict {v}")
+    expect("outside (9.09 %)" in r.stdout and "within (9.09 %), bias" in r.stdout,
+           f"the table's verdicts: {r.stdout}")
+    r = subprocess.run(["/usr/bin/python3", TOOL, *dirs[:4], "--case", case, "--sets", "3"],
+                       capture_output=True, text=True)
+    expect(r.returncode == 2 and "--sets 3: 4 folders" in r.stderr, f"4 folders: {r.stderr}")
+    r = subprocess.run(["/usr/bin/python3", TOOL, *dirs[:3], "--case", case, "--sets", "3"],
+                       capture_output=True, text=True)
+    expect(r.returncode == 2 and "at least one setting" in r.stderr, f"no setting: {r.stderr}")
 
 
 main()
