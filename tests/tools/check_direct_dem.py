@@ -97,6 +97,7 @@ def bad(work):
         ("settlement past the base", TINY, ["--settlement", "10"], "--settlement"),
         ("resume of nothing", TINY, ["--resume"], "no such folder"),
         ("resettle without a block", TINY, ["--resettle"], "--resettle"),
+        ("extend without a resume", TINY, ["--extend", "--settlement", "0.2"], "--extend"),
         ("no such settling", TINY, ["--settle-damping", "viscous"], "--settle-damping"),
         ("unknown option, one line", TINY, ["--sead", "3"], "unrecognized arguments"),
         ("no such probe place", TINY, ["--probes", "keel"], "--probes keel"),
@@ -398,11 +399,38 @@ def resume(work, reference):
               if n != "direct_dem.lock"}
     code, _, stderr = run_tool([TINY, "--output", finished, "--resume", "--settlement",
                                 str(2 * SETTLEMENT)])
-    check(code == 2 and "finished" in stderr and "--start-from" in stderr,
+    check(code == 2 and "finished" in stderr and "--start-from" in stderr and
+          "--extend" in stderr,
           f"a finished run resumed to a larger settlement: exit {code}: {stderr.strip()[:160]}")
+    code, _, stderr = run_tool([TINY, "--output", finished, "--resume", "--extend"])
+    check(code == 2 and "--extend: only for a finished run resumed to a larger" in stderr,
+          f"--extend without a larger settlement: exit {code}: {stderr.strip()[:160]}")
     after = {n: os.path.getmtime(os.path.join(finished, n)) for n in os.listdir(finished)
              if n != "direct_dem.lock"}
     check(after == before, "a finished run resumed: the folder unchanged")
+    extended(finished)
+
+
+def extended(finished):
+    """--extend: the finished run continued from its end to twice its settlement, its rows
+    kept as they were and new ones after them, the end it was continued from recorded."""
+    rows_before = open(os.path.join(finished, "history.csv")).read().splitlines()
+    steps_before = json.load(open(os.path.join(finished, "summary.json")))["particle_steps"]
+    code, _, stderr = run_tool([TINY, "--output", finished, "--resume", "--extend",
+                                "--settlement", str(2 * SETTLEMENT)])
+    check(code == 0, f"--extend: exit {code}: {stderr.strip()[-200:]}")
+    if code != 0:
+        return
+    rows = open(os.path.join(finished, "history.csv")).read().splitlines()
+    check(rows[:len(rows_before)] == rows_before and len(rows) > len(rows_before),
+          f"--extend: the finished rows kept ({len(rows_before)}), new ones after them "
+          f"({len(rows) - len(rows_before)})")
+    s = json.load(open(os.path.join(finished, "summary.json")))
+    check(s["finished"] and s["extended_from"] == [SETTLEMENT] and
+          abs(s["s_over_B_reached"] - 2 * SETTLEMENT) < 0.01 * SETTLEMENT and
+          s["particle_steps"] > steps_before,
+          f"--extend: summary finished at s/B {s['s_over_B_reached']}, extended from "
+          f"{s['extended_from']}, particle-steps {s['particle_steps']:.3g} > {steps_before:.3g}")
 
 
 def refused(work):

@@ -120,6 +120,10 @@ def arguments():
                    "--settle-damping) before its loading")
     p.add_argument("--stop-after-minutes", type=cli.positive,
                    help="stop at the first checkpoint after this long (continue with --resume)")
+    p.add_argument("--extend", action="store_true",
+                   help="with --resume and a larger --settlement: continue a finished run "
+                   "from its end state (not bit for bit one longer run: the loading's "
+                   "500-step grid restarts at the old end)")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--resume", action="store_true", help="continue DIR from its checkpoint")
     g.add_argument("--start-from", metavar="RUN_DIR",
@@ -152,15 +156,24 @@ def main():
         fill_options(a, pb, {**ADDED_KEPT, **record["options"]}, out)
         if a.settlement is None:
             a.settlement = record["settlement"]
-        if a.settlement > record["settlement"] and record["stage"] == "load" and \
-                record["state"]["load_steps"] >= loading_steps(pb, a.speed_factor,
-                                                               record["settlement"]):
+        finished = record["stage"] == "load" and record["state"]["load_steps"] >= \
+            loading_steps(pb, a.speed_factor, record["settlement"])
+        longer = a.settlement > record["settlement"]
+        if a.extend and not (finished and longer):
+            raise InputError(f"--extend: only for a finished run resumed to a larger "
+                             f"--settlement ({out}: " + ("finished at" if finished else
+                                                         "not finished, its end") +
+                             f" s/B {record['settlement']:g})")
+        if finished and longer and not a.extend:
             # Its last checkpoint is the end state, a shorter chunk off the loading's 500-step
             # grid: a loading continued from there is not bit for bit the longer run.
             raise InputError(f"{out}: this run finished (s/B {record['settlement']:g}); for a "
                              "longer loading start a new run from its settled block with "
-                             "--start-from")
+                             "--start-from, or continue this one from its end with --extend "
+                             "(not bit for bit one longer run)")
     else:
+        if a.extend:
+            raise InputError("--extend: only with --resume (it continues a finished run)")
         if a.resettle and not a.start_from:
             raise InputError("--resettle: only with --start-from (a new run settles anyway)")
         if a.start_from:
@@ -237,6 +250,8 @@ def go(run, a, out, record):
         restart = os.path.join(folder, record["files"]["restart"]["name"])
         run.restore(record, restart)
         run.sitting_steps = run.particle_steps
+        if a.extend:
+            run.extended_from = run.extended_from + [record["settlement"]]
         if not a.resume:  # a new loading of the settled block: its own checkpoints from here
             run.next_checkpoint = run.steps + a.checkpoint_steps
             if a.resettle:

@@ -28,7 +28,7 @@ STATE = ("steps", "particle_steps", "grains", "solid", "lx", "ly", "load_steps",
          "next_checkpoint", "base_ids", "footing_ids", "top_fixes", "engine_cpu", "python_cpu",
          "wall")
 # State added later, with its value in a checkpoint written before it.
-ADDED_STATE = {"next_probe": 0}
+ADDED_STATE = {"next_probe": 0, "extended_from": []}
 # Default checkpoint interval: about ten minutes of one core's stepping (5e6 particle-steps/s).
 CHECKPOINT_WORK = 3e9
 

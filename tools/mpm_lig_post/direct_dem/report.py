@@ -35,6 +35,7 @@ def summarise(run, pb, args, out, finished):
         "speed_factor": args.speed_factor, "inertial_number": pb["inertial"] * args.speed_factor,
         "q_s": pb["qs"], "preparation": run.prepared, "settled": run.settled,
         "dem_steps": run.steps, "loading_steps": run.load_steps,
+        "extended_from": run.extended_from,
         "particle_steps": run.particle_steps, "ranks": args.np,
         "checkpoint_steps": args.checkpoint_steps,
         "wall_seconds": run.wall + time.time() - run.start, "engine_cpu_seconds": cpu,

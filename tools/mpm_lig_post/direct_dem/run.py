@@ -34,6 +34,7 @@ class Run(Preparation, Block):
         self.top_fixes = []     # multiplicities m of the surcharge groups topM / fixes surM
         self.stage = "prepare"
         self.last_checkpoint = None  # (stage, steps, s/B) of the newest checkpoint on disk
+        self.extended_from = []      # the ends (s/B) of the finished loadings --extend continued
 
     # engine plumbing
     def open(self):
