@@ -32,9 +32,9 @@ def verdict(errors, spread, target, absolute):
     {"bound", "mean", "standard_error", "within", "bias"}: bias when the mean error is
     outside its 95 % confidence interval around zero (Student's t over the sets)."""
     known = [e for e in errors if e is not None]
-    bound = max(spread or 0.0, 0.0 if absolute else target)
-    out = {"bound": bound if (spread is not None or not absolute) else None, "mean": None,
-           "standard_error": None, "within": None, "bias": None}
+    # An absolute quantity has no target of its own: without a scatter it has no bound.
+    bound = max(spread or 0.0, target) if not absolute else spread
+    out = {"bound": bound, "mean": None, "standard_error": None, "within": None, "bias": None}
     if len(known) < len(errors) or not known:
         return out
     out["mean"] = float(np.mean(known))
