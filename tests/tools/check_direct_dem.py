@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Checks of tools/direct_dem.py.
 
-usage: check_direct_dem.py bad WORK      bad input: exit 2, the key named, nothing created
+usage: check_direct_dem.py bad WORK      bad input: exit 2, the key named, nothing created;
+                                         direct_dem_compare.py against a multiscale run
        check_direct_dem.py affine        coarse-grained strain of an affinely deformed packing
        check_direct_dem.py run WORK      a real run of tests/tools/direct_dem_tiny.json (100
                                          discs, to s/B = 0.12, two probes) and what it must
@@ -157,6 +158,7 @@ def bad(work):
               f"{stderr.strip()[:120]}")
         left = subprocess.run(["pgrep", "-f", fake], capture_output=True, text=True).stdout
         check(not left.strip(), f"an engine that {name}: no process left")
+    compare_checks(os.path.join(work, "compare"))
 
 
 def affine():
@@ -210,6 +212,67 @@ def size_checks():
     check(g[20]["n"] == 2 and abs(g[20]["mean"] - (law(20, 0.186) + law(20, 0.188)) / 2) < 1e-12
           and g[40]["std"] is None, "per-size mean, count and no std for one packing")
     check(size_effect.fit(rows[:2], "highest") is None, "no fit from two runs")
+
+
+def write_folder(folder, files):
+    os.makedirs(folder, exist_ok=True)
+    for name, text in files.items():
+        with open(os.path.join(folder, name), "w") as f:
+            f.write(text)
+
+
+def history_text(columns, rows):
+    return ",".join(columns) + "\n" + "".join(",".join(f"{v:.17g}" for v in r) + "\n"
+                                              for r in rows)
+
+
+def compare_checks(work):
+    """direct_dem_compare.py --multiscale-runs: a multiscale footing's peak and window means read
+    from its own history over its case's B and q_s, and the grains' differences against them."""
+    B, qs = 0.4, 2e5
+    sB = (np.arange(1001) + 0.5) / 1000  # off the windows' ends, where rounding would decide
+    # q/q_s: up to 20 at s/B 0.15, down to 12 by 0.3, then 12 + 4 (s/B - 0.3)
+    shape = np.interp(sB, [0.0, 0.15, 0.3, 1.0], [2.0, 20.0, 12.0, 14.8])
+    case = {"rigid_bodies": [{"width": [B], "center": [0, 0], "base": 0}],
+            "boundary_conditions": [{"type": "traction", "traction": [0.0, -qs]}]}
+    multi = os.path.join(work, "mpm_h8")
+    write_folder(multi, {"case.json": json.dumps(case), "history.csv": history_text(
+        ["step", "settlement", "q"], [(k, s * B, v * qs) for k, (s, v) in
+                                      enumerate(zip(sB, shape))])})
+    grains = os.path.join(work, "dem")
+    write_folder(grains, {"history.csv": history_text(["s_over_B", "q_over_qs"],
+                                                      zip(sB, 0.9 * shape)),
+                          "summary.json": json.dumps({
+                              "grains": 100, "B_over_d": 20, "seed": 11, "speed_factor": 1,
+                              "particle_steps": 1e6, "loading_steps": 1000,
+                              "core_seconds": 36.0, "wall_seconds": 36.0})})
+    prefix = os.path.join(work, "cmp")
+    tool = os.path.join(TOOLS, "direct_dem_compare.py")
+    p = subprocess.run([sys.executable, tool, grains, "--multiscale-runs", multi, "--at", "2",
+                        "-o", prefix], capture_output=True, text=True)
+    check(p.returncode == 0, f"direct_dem_compare --multiscale-runs: exit {p.returncode} "
+          f"{p.stderr.strip()[-300:]}")
+    if p.returncode != 0:
+        return
+    out = json.load(open(prefix + ".json"))
+    m = out["multiscale"]["mpm_h8"]
+    inside = (sB >= 0.4) & (sB <= 1.0)
+    k = int(np.argmax(shape))
+    check(abs(m["peak"] - shape[k]) < 1e-9 and abs(m["peak_at"] - sB[k]) < 1e-9 and
+          abs(m["mean"] - shape[inside].mean()) < 1e-9,
+          f"the multiscale run's peak {m['peak']:.4f} at s/B {m['peak_at']:.3f} and mean over "
+          f"0.4-1.0 {m['mean']:.4f} from its history over its case's B and q_s")
+    r = out["runs"][0]
+    check(all(abs(r[f"{k} vs mpm_h8"] + 0.1) < 1e-9 for k in
+              ("peak", "plateau_0.1_0.3", "plateau", "mean")),
+          "the grains at 0.9 times the curve read -10 % in every window")
+    check("vs DEM, h = B/4, flip 0.99" not in str(r), "no table rows read without --rows")
+    os.remove(os.path.join(multi, "case.json"))
+    p = subprocess.run([sys.executable, tool, grains, "--multiscale-runs", multi, "--at", "2",
+                        "-o", prefix + "2"], capture_output=True, text=True)
+    check(p.returncode == 2 and "--multiscale-case" in p.stderr and
+          not os.path.exists(prefix + "2.json"),
+          f"a multiscale folder without its case: exit {p.returncode}, {p.stderr.strip()!r}")
 
 
 def fabric_checks():

@@ -2,13 +2,18 @@
 one table, the load curves and the eps_q fields at one settlement.
 
 usage: direct_dem_compare.py RUN_DIR [RUN_DIR ...] [--multiscale-table docs/footing_dem_e0187.md]
-                             [--rows "DEM, h = B/4, flip 0.99" ...] [--at 0.5]
-                             [--pictures B4.png B8.png] [-o PREFIX] [--dpi N]
+                             [--rows "DEM, h = B/4, flip 0.99" ...]
+                             [--multiscale-runs MPM_DIR ...] [--multiscale-case CASE]
+                             [--at 0.5] [--pictures B4.png B8.png] [-o PREFIX] [--dpi N]
 
 Each RUN_DIR is a direct-DEM output (summary.json, history.csv, results.h5). The multiscale
 numbers are read from their one home, the load table of --multiscale-table (the rows whose first
 cell starts with a --rows text; columns: first peak, plateau over s/B 0.1-0.4, mean over
-0.4-1.0, which a table that stops at s/B 0.4 lacks), never copied. Prints one row per run:
+0.4-1.0, which a table that stops at s/B 0.4 lacks), never copied; or, with --multiscale-runs,
+from the multiscale runs' own histories (mpm_lig output folders: history.csv with the footing's
+settlement [m] and q [Pa], normalised by the B and q_s of the folder's case.json, or of
+--multiscale-case for folders without one), with the direct DEM's definitions of the peak and
+the windows, their curves drawn beside the grains'; --rows is then read only when given. Prints one row per run:
 grains, B/d, particle-steps, core-hours, peak q/q_s (at s/B), plateau 0.1-0.4, mean 0.4-1.0 (a window the run did not reach: '-') and the
 difference of each (first peak: the running maximum before the load first drops 10 % below it) against every multiscale row; writes PREFIX_load.png (q/q_s against s/B of
 every run, the multiscale peak and window means as marks) and PREFIX_fields.png (eps_q of each
@@ -25,12 +30,13 @@ import re  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from mpm_lig_post import checkout, cli, figures, size_effect  # noqa: E402
+from mpm_lig_post import checkout, cli, figures, footing, size_effect  # noqa: E402
 from mpm_lig_post.errors import InputError  # noqa: E402
 from mpm_lig_post.fields import FieldFile  # noqa: E402
 from mpm_lig_post.tables import need, read_history, read_json, require_columns  # noqa: E402
 
 WINDOWS = (("plateau", 0.1, 0.4), ("mean", 0.4, 1.0), ("plateau_0.1_0.3", 0.1, 0.3))
+COMPARED = ("peak", "plateau_0.1_0.3", "plateau", "mean")  # against each multiscale row
 
 
 def first_number(cell):
@@ -76,6 +82,42 @@ SUMMARY_KEYS = ("grains", "B_over_d", "seed", "speed_factor", "particle_steps", 
                 "core_seconds", "wall_seconds")
 
 
+def windows(sB, q):
+    """{"peak", "peak_at", and each WINDOWS mean (None where the curve stops short)}."""
+    row = {}
+    row["peak"], row["peak_at"] = first_peak(sB, q)
+    for name, a, b in WINDOWS:
+        inside = (sB >= a) & (sB <= b)
+        row[name] = float(q[inside].mean()) if inside.any() and sB[-1] >= b - 1e-6 else None
+    return row
+
+
+def multiscale_run(directory, fallback_case=None):
+    """(row, s/B, q/q_s) of an mpm_lig footing run: its history's settlement and q over the B
+    and q_s of its case (DIR/case.json, else `fallback_case`); InputError naming what is
+    missing."""
+    case_path = os.path.join(directory, "case.json")
+    if not os.path.isfile(case_path):
+        if fallback_case is None:
+            raise InputError(f"{directory}: no case.json (give the case with --multiscale-case)")
+        case_path = fallback_case
+    case = read_json(case_path)
+    width = footing.width(case, case_path)
+    qs = footing.surcharge(case, case_path)
+    if not width > 0 or not qs:
+        raise InputError(f"{case_path}: needs a footing width > 0 and a surface surcharge "
+                         "(a traction) to normalise the load")
+    path = os.path.join(directory, "history.csv")
+    table = read_history(path)
+    require_columns(table, ("settlement", "q"), path)
+    sB, q = table["settlement"] / width, table["q"] / qs
+    if not (np.all(np.isfinite(sB)) and np.all(np.isfinite(q))):
+        raise InputError(f"{path}: settlement or q is not finite")
+    row = {"run": directory, "reached": float(sB[-1])}
+    row.update(windows(sB, q))
+    return row, sB, q
+
+
 def run_row(directory):
     path = os.path.join(directory, "summary.json")
     summary = read_json(path)
@@ -96,10 +138,7 @@ def run_row(directory):
            "reached": float(sB[-1]), "highest": float(q.max()),
            "highest_at": float(sB[int(np.argmax(q))]),
            "void_ratio": (summary.get("preparation") or {}).get("void_ratio")}
-    row["peak"], row["peak_at"] = first_peak(sB, q)
-    for name, a, b in WINDOWS:
-        inside = (sB >= a) & (sB <= b)
-        row[name] = float(q[inside].mean()) if inside.any() and sB[-1] >= b - 1e-6 else None
+    row.update(windows(sB, q))
     return row, sB, q
 
 
@@ -115,6 +154,11 @@ def read_picture(path):
         raise InputError(f"{path}: not a picture ({e})") from None
 
 
+def greys(n):
+    """n shades from near black to light grey: the multiscale curves, apart from the grains'."""
+    return [str(round(0.1 + 0.6 * k / max(1, n - 1), 3)) for k in range(n)]
+
+
 def fmt(v, spec=".2f"):
     return "-" if v is None else format(v, spec)
 
@@ -123,8 +167,12 @@ def main():
     p = cli.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("runs", nargs="+", metavar="RUN_DIR")
     p.add_argument("--multiscale-table", default=checkout.path("docs", "footing_dem_e0187.md"))
-    p.add_argument("--rows", nargs="*", default=["DEM, h = B/4, flip 0.99",
-                                                 "DEM, h = B/8, flip 0.99"])
+    p.add_argument("--rows", nargs="*", default=None,
+                   help="table rows (default, without --multiscale-runs: the two flip-0.99 rows)")
+    p.add_argument("--multiscale-runs", nargs="*", default=[], metavar="MPM_DIR",
+                   help="multiscale run folders whose histories are compared")
+    p.add_argument("--multiscale-case", metavar="CASE",
+                   help="the case of --multiscale-runs folders that hold no case.json")
     p.add_argument("--at", type=cli.non_negative, default=0.5,
                    help="s/B of the field comparison")
     p.add_argument("--pictures", nargs="*", default=[], help="multiscale field pictures to set beside")
@@ -145,13 +193,23 @@ def main():
         if not os.path.isfile(os.path.join(d, "summary.json")):
             raise InputError(f"{d}: no summary.json (not a direct_dem.py output)")
     images = [read_picture(picture) for picture in a.pictures]
-    multi = multiscale_rows(a.multiscale_table, a.rows)
+    if a.rows is None:
+        a.rows = [] if a.multiscale_runs else ["DEM, h = B/4, flip 0.99", "DEM, h = B/8, flip 0.99"]
+    multi = multiscale_rows(a.multiscale_table, a.rows) if a.rows else {}
+    multi_curves = []
+    for d in a.multiscale_runs:
+        m, sB, q = multiscale_run(d, a.multiscale_case)
+        name = os.path.basename(os.path.normpath(d))
+        if name in multi:
+            raise InputError(f"{d}: two multiscale runs named {name}")
+        multi[name] = m
+        multi_curves.append((name, sB, q))
     rows, curves = [], []
     for d in a.runs:
         row, sB, q = run_row(d)
         for name, m in multi.items():
-            for key in ("peak", "plateau", "mean"):
-                if row[key] is not None and m[key]:
+            for key in COMPARED:
+                if row[key] is not None and m.get(key):
                     row[f"{key} vs {name}"] = row[key] / m[key] - 1.0
         rows.append(row)
         curves.append((d, sB, q, row))
@@ -169,7 +227,7 @@ def main():
               f"{fmt(r['plateau']):>8s} {fmt(r['mean']):>8s}")
         for name in multi:
             diffs = [f"{key} {100 * r[f'{key} vs {name}']:+.0f} %" for key in
-                     ("peak", "plateau", "mean") if f"{key} vs {name}" in r]
+                     COMPARED if f"{key} vs {name}" in r]
             print(f"    against {name}: {', '.join(diffs)}")
     sizes = size_table(rows, multi, a.output, a.dpi) if a.sizes else None
     with open(a.output + ".json", "w") as f:
@@ -181,7 +239,10 @@ def main():
     for d, sB, q, r in curves:
         ax.plot(sB, q, lw=1.0, label=f"direct DEM, B/d = {r['B_over_d']:.0f}, seed {r['seed']}"
                 + (f", speed x{r['speed_factor']:g}" if r["speed_factor"] != 1 else ""))
-    for (name, m), colour in zip(multi.items(), ("k", "0.45", "0.7")):
+    for (name, sB, q), colour in zip(multi_curves, greys(len(multi_curves))):
+        ax.plot(sB, q, color=colour, lw=1.6, ls="--", label=f"multiscale {name}")
+    tabled = [(name, m) for name, m in multi.items() if name in a.rows]
+    for (name, m), colour in zip(tabled, ("k", "0.45", "0.7")):
         ax.plot([0.1, 0.4], [m["plateau"]] * 2, "-", color=colour, lw=3, alpha=0.6)
         if m["mean"] is not None:
             ax.plot([0.4, 1.0], [m["mean"]] * 2, "--", color=colour, lw=3, alpha=0.6)
@@ -189,7 +250,7 @@ def main():
                    "window means (bars)")
     ax.set_xlabel("settlement s/B")
     ax.set_ylabel(r"footing pressure $q/q_s$")
-    ax.set_xlim(0, max(1.0, max(c[1][-1] for c in curves)))
+    ax.set_xlim(0, max([1.0] + [c[1][-1] for c in curves] + [c[1][-1] for c in multi_curves]))
     ax.set_ylim(bottom=0)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=1, frameon=False, fontsize=8)
     figures.save(fig, a.output + "_load.png", a.dpi)
