@@ -155,8 +155,11 @@ def read_picture(path):
 
 
 def greys(n):
-    """n shades from near black to light grey: the multiscale curves, apart from the grains'."""
-    return [str(round(0.1 + 0.6 * k / max(1, n - 1), 3)) for k in range(n)]
+    """n (colour, line style): shades from near black to light grey and four dash patterns,
+    so that the multiscale curves stay apart from each other and from the grains'."""
+    styles = ("--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
+    return [(str(round(0.1 + 0.55 * k / max(1, n - 1), 3)), styles[k % len(styles)])
+            for k in range(n)]
 
 
 def fmt(v, spec=".2f"):
@@ -239,8 +242,8 @@ def main():
     for d, sB, q, r in curves:
         ax.plot(sB, q, lw=1.0, label=f"direct DEM, B/d = {r['B_over_d']:.0f}, seed {r['seed']}"
                 + (f", speed x{r['speed_factor']:g}" if r["speed_factor"] != 1 else ""))
-    for (name, sB, q), colour in zip(multi_curves, greys(len(multi_curves))):
-        ax.plot(sB, q, color=colour, lw=1.6, ls="--", label=f"multiscale {name}")
+    for (name, sB, q), (colour, style) in zip(multi_curves, greys(len(multi_curves))):
+        ax.plot(sB, q, color=colour, lw=1.6, ls=style, label=f"multiscale {name}")
     tabled = [(name, m) for name, m in multi.items() if name in a.rows]
     for (name, m), colour in zip(tabled, ("k", "0.45", "0.7")):
         ax.plot([0.1, 0.4], [m["plateau"]] * 2, "-", color=colour, lw=3, alpha=0.6)
