@@ -49,6 +49,7 @@ def main():
         ("an output folder that is not empty", [TINY, run, "--mpm-lig", mpm_lig], "not empty"),
         ("a seed given twice", [TINY, run, "--seeds", "3", "3", "--mpm-lig", mpm_lig],
          "--seeds"),
+        ("a negative --at", [TINY, run, "--at", "-0.1", "--mpm-lig", mpm_lig], "--at"),
     ]
     for name, args, key in cases:
         out = full if "not empty" in name else os.path.join(work, "out_" + name.replace(" ", "_"))
@@ -60,7 +61,7 @@ def main():
             check(not os.path.exists(out), f"{name}: no output folder created")
     out = os.path.join(work, "replay")
     code, stdout, stderr = tool([TINY, run, "-o", out, "--mpm-lig", mpm_lig, "--probes", "far",
-                                 "--seeds", "11"])
+                                 "--seeds", "11", "--at", "0.05"])
     check(code == 0, f"the replay of probe far ends with exit 0 ({stderr.strip()[-200:]})")
     if code != 0:
         return
@@ -84,6 +85,14 @@ def main():
     check(r["rows"] == len(far) and "11" in r["seeds"] and
           np.isfinite(r["seeds"]["11"]["mean_abs_dp_over_p0"]),
           "replay.json: the probe's rows and the seed's differences")
+    k = int(np.argmin(np.abs(far["s_over_B"] - 0.05)))
+    state = r["at"].get("0.05", {})
+    p0 = report["p0"]
+    check(abs(state.get("grains_p_over_p0", np.nan) - far["p"][k] / p0) < 1e-12 and
+          abs(state.get("rve_p_over_p0", np.nan) - history["p"][k] / p0) < 1e-12 and
+          abs(state.get("rve_ratio", np.nan) - history["q"][k] / history["p"][k]) < 1e-12,
+          f"--at 0.05: the grains' and the RVE's p and q/p of row {k} (s/B "
+          f"{far['s_over_B'][k]:.3f}): {state}")
     check(os.path.getsize(os.path.join(out, "replay.png")) > 0, "replay.png drawn")
     check("| far |" in stdout, "the table printed")
 

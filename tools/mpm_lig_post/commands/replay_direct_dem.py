@@ -2,7 +2,8 @@
 (tools/direct_dem.py --probes) replayed on RVEs of the same grains, stress beside stress.
 
 usage: replay_direct_dem.py CASE.json RUN_DIR -o OUT_DIR [--mpm-lig build/mpm_lig]
-                            [--probes NAME ...] [--seeds 11 12 13] [--upto S] [--dpi N]
+                            [--probes NAME ...] [--seeds 11 12 13] [--upto S] [--at S ...]
+                            [--dpi N]
 
 RUN_DIR/probes.csv holds, for each probe (a window of the RVE's size that follows its grains),
 the window's deformation gradient F from the start of loading and its grains' own stress
@@ -13,7 +14,8 @@ rve node with that seed (OUT_DIR/cases/PROBE_sSEED.json) and runs it with mpm_li
 increments and sub-step rule, from its own prepared packing. It then prints, per probe, the
 grains' and the RVEs' largest stress ratio q/p (2D: Mohr-circle radius over in-plane mean
 stress) and where, the RVEs' mean over seeds and its spread, and the mean and largest
-difference of p and of q/p along the path (p over the preparation pressure p0); writes
+difference of p and of q/p along the path (p over the preparation pressure p0), and with --at
+the grains' p/p0 and q/p beside the RVEs' mean ± std at the rows nearest those s/B; writes
 OUT_DIR/replay.json and OUT_DIR/replay.png (q/p and p/p0 against s/B, grains and RVEs).
 Exit 0 done, 1 an element test failed (its log named), 2 bad input (before anything runs).
 """
@@ -66,8 +68,28 @@ def ratio(p, q):
     return np.where(p > 0, q / np.maximum(p, 1e-300), np.nan)
 
 
-def compare(grains, rves, p0):
-    """The numbers of one probe: the grains' and each RVE's peak q/p, differences on the path."""
+def states_at(grains, rves, p0, at):
+    """{s/B: grains' and RVEs' (mean, std) p/p0 and q/p} at the rows nearest each `at`."""
+    out = {}
+    for s in at:
+        k = int(np.argmin(np.abs(grains["s_over_B"] - s)))
+        rows = [(h["p"][k] / p0, ratio(h["p"][k], h["q"][k])) for h in rves.values()
+                if len(h["p"]) > k]
+        if not rows:
+            continue
+        p, r = np.array(rows, float).T
+        spread = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
+        out[f"{s:g}"] = {"s_over_B": float(grains["s_over_B"][k]),
+                         "grains_p_over_p0": float(grains["p"][k] / p0),
+                         "grains_ratio": float(ratio(grains["p"][k], grains["q"][k])),
+                         "rve_p_over_p0": float(p.mean()), "rve_p_over_p0_std": spread(p),
+                         "rve_ratio": float(r.mean()), "rve_ratio_std": spread(r)}
+    return out
+
+
+def compare(grains, rves, p0, at=()):
+    """The numbers of one probe: the grains' and each RVE's peak q/p, differences on the path,
+    and the states at the s/B of `at`."""
     g_ratio = ratio(grains["p"], grains["q"])
     k = int(np.nanargmax(g_ratio))
     row = {"grains_peak_ratio": float(g_ratio[k]), "grains_peak_at": float(grains["s_over_B"][k]),
@@ -89,6 +111,7 @@ def compare(grains, rves, p0):
         peaks.append(r_ratio[j])
     row["rve_peak_ratio_mean"] = float(np.mean(peaks))
     row["rve_peak_ratio_std"] = float(np.std(peaks, ddof=1)) if len(peaks) > 1 else 0.0
+    row["at"] = states_at(grains, rves, p0, at)
     return row
 
 
@@ -103,6 +126,8 @@ def main():
     p.add_argument("--seeds", type=cli.non_negative_int, nargs="+",
                    help="RVE packing seeds (default: the case's rve seed and the next two)")
     p.add_argument("--upto", type=cli.positive, help="replay rows up to this s/B (default all)")
+    p.add_argument("--at", type=cli.non_negative, nargs="+", default=[],
+                   help="s/B at which the grains' and the RVEs' p and q/p are set side by side")
     p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
     case = read_json(a.case)
@@ -146,7 +171,7 @@ def main():
                   f"{grains['s_over_B'][-1]:.3f}) on the RVE of seed {seed}", flush=True)
             histories[name][seed] = replay(a.mpm_lig, case_path,
                                            os.path.join(out, "runs", f"{name}_s{seed}"))
-        report["probes"][name] = compare(grains, histories[name], p0)
+        report["probes"][name] = compare(grains, histories[name], p0, a.at)
         report["probes"][name]["rows"] = rows
     print_table(report)
     with open(os.path.join(out, "replay.json"), "w") as f:
@@ -166,6 +191,14 @@ def print_table(report):
               f"{np.mean([s['mean_abs_dp_over_p0'] for s in seeds]):.3f} | "
               f"{r['grains_final_p_over_p0']:.2f} / "
               f"{np.mean([s['final_p_over_p0'] for s in seeds]):.2f} |")
+    states = [(name, s) for name, r in report["probes"].items() for s in r["at"].values()]
+    if states:
+        print("\n| probe | s/B | p / p0, grains | p / p0, RVEs | q/p, grains | q/p, RVEs |")
+        print("|---|---|---|---|---|---|")
+        for name, s in states:
+            print(f"| {name} | {s['s_over_B']:.3f} | {s['grains_p_over_p0']:.2f} | "
+                  f"{s['rve_p_over_p0']:.2f} ± {s['rve_p_over_p0_std']:.2f} | "
+                  f"{s['grains_ratio']:.3f} | {s['rve_ratio']:.3f} ± {s['rve_ratio_std']:.3f} |")
 
 
 def picture(path, probes, histories, names, report, p0, dpi):
