@@ -16,7 +16,7 @@ settlement [m] and q [Pa], normalised by the B and q_s of the folder's case.json
 the windows, their curves drawn beside the grains'; --rows is then read only when given. Prints one row per run:
 grains, B/d, particle-steps, core-hours, peak q/q_s (at s/B), plateau 0.1-0.4, mean 0.4-1.0 (a window the run did not reach: '-') and the
 difference of each (first peak: the running maximum before the load first drops 10 % below it) against every multiscale row; writes PREFIX_load.png (q/q_s against s/B of
-every run, the multiscale peak and window means as marks) and PREFIX_fields.png (eps_q of each
+every run, the table rows' peak and window means as marks, the multiscale runs' own curves) and PREFIX_fields.png (eps_q of each
 run at s/B = --at beside the --pictures of the multiscale fields), and PREFIX.json.
 Exit 2 on bad input (a folder without a summary, a row not in the table).
 """

@@ -78,13 +78,17 @@ def states_at(grains, rves, p0, at):
         if not rows:
             continue
         p, r = np.array(rows, float).T
-        spread = (lambda v: float(np.std(v, ddof=1)) if len(v) > 1 else 0.0)
         out[f"{s:g}"] = {"s_over_B": float(grains["s_over_B"][k]),
                          "grains_p_over_p0": float(grains["p"][k] / p0),
                          "grains_ratio": float(ratio(grains["p"][k], grains["q"][k])),
-                         "rve_p_over_p0": float(p.mean()), "rve_p_over_p0_std": spread(p),
-                         "rve_ratio": float(r.mean()), "rve_ratio_std": spread(r)}
+                         "rve_p_over_p0": float(p.mean()), "rve_p_over_p0_std": sample_std(p),
+                         "rve_ratio": float(r.mean()), "rve_ratio_std": sample_std(r)}
     return out
+
+
+def sample_std(values):
+    """The spread over RVE seeds (0 for one seed)."""
+    return float(np.std(values, ddof=1)) if len(values) > 1 else 0.0
 
 
 def compare(grains, rves, p0, at=()):
@@ -110,7 +114,7 @@ def compare(grains, rves, p0, at=()):
                               "max_abs_d_ratio": float(np.nanmax(dr))}
         peaks.append(r_ratio[j])
     row["rve_peak_ratio_mean"] = float(np.mean(peaks))
-    row["rve_peak_ratio_std"] = float(np.std(peaks, ddof=1)) if len(peaks) > 1 else 0.0
+    row["rve_peak_ratio_std"] = sample_std(peaks)
     row["at"] = states_at(grains, rves, p0, at)
     return row
 
