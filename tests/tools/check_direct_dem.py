@@ -30,6 +30,9 @@ import time
 
 import numpy as np
 
+import synthetic
+from checking import tool as checkout_tool
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOLS = os.path.join(HERE, "..", "..", "tools")
 TOOL = os.path.join(TOOLS, "direct_dem.py")
@@ -214,18 +217,6 @@ def size_checks():
     check(size_effect.fit(rows[:2], "highest") is None, "no fit from two runs")
 
 
-def write_folder(folder, files):
-    os.makedirs(folder, exist_ok=True)
-    for name, text in files.items():
-        with open(os.path.join(folder, name), "w") as f:
-            f.write(text)
-
-
-def history_text(columns, rows):
-    return ",".join(columns) + "\n" + "".join(",".join(f"{v:.17g}" for v in r) + "\n"
-                                              for r in rows)
-
-
 def compare_checks(work):
     """direct_dem_compare.py --multiscale-runs: a multiscale footing's peak and window means read
     from its own history over its case's B and q_s, and the grains' differences against them."""
@@ -236,23 +227,19 @@ def compare_checks(work):
     case = {"rigid_bodies": [{"width": [B], "center": [0, 0], "base": 0}],
             "boundary_conditions": [{"type": "traction", "traction": [0.0, -qs]}]}
     multi = os.path.join(work, "mpm_h8")
-    write_folder(multi, {"case.json": json.dumps(case), "history.csv": history_text(
-        ["step", "settlement", "q"], [(k, s * B, v * qs) for k, (s, v) in
-                                      enumerate(zip(sB, shape))])})
+    synthetic.write_history(multi, ["step", "settlement", "q"],
+                            [(k, s * B, v * qs) for k, (s, v) in enumerate(zip(sB, shape))])
+    json.dump(case, open(os.path.join(multi, "case.json"), "w"))
     grains = os.path.join(work, "dem")
-    write_folder(grains, {"history.csv": history_text(["s_over_B", "q_over_qs"],
-                                                      zip(sB, 0.9 * shape)),
-                          "summary.json": json.dumps({
-                              "grains": 100, "B_over_d": 20, "seed": 11, "speed_factor": 1,
-                              "particle_steps": 1e6, "loading_steps": 1000,
-                              "core_seconds": 36.0, "wall_seconds": 36.0})})
+    synthetic.write_history(grains, ["s_over_B", "q_over_qs"], zip(sB, 0.9 * shape))
+    json.dump({"grains": 100, "B_over_d": 20, "seed": 11, "speed_factor": 1,
+               "particle_steps": 1e6, "loading_steps": 1000, "core_seconds": 36.0,
+               "wall_seconds": 36.0}, open(os.path.join(grains, "summary.json"), "w"))
     prefix = os.path.join(work, "cmp")
-    tool = os.path.join(TOOLS, "direct_dem_compare.py")
-    p = subprocess.run([sys.executable, tool, grains, "--multiscale-runs", multi, "--at", "2",
-                        "-o", prefix], capture_output=True, text=True)
-    check(p.returncode == 0, f"direct_dem_compare --multiscale-runs: exit {p.returncode} "
-          f"{p.stderr.strip()[-300:]}")
-    if p.returncode != 0:
+    code, _, stderr = checkout_tool("direct_dem_compare.py", [grains, "--multiscale-runs", multi,
+                                                              "--at", "2", "-o", prefix])
+    check(code == 0, f"direct_dem_compare --multiscale-runs: exit {code} {stderr.strip()[-300:]}")
+    if code != 0:
         return
     out = json.load(open(prefix + ".json"))
     m = out["multiscale"]["mpm_h8"]
@@ -268,11 +255,10 @@ def compare_checks(work):
           "the grains at 0.9 times the curve read -10 % in every window")
     check("vs DEM, h = B/4, flip 0.99" not in str(r), "no table rows read without --rows")
     os.remove(os.path.join(multi, "case.json"))
-    p = subprocess.run([sys.executable, tool, grains, "--multiscale-runs", multi, "--at", "2",
-                        "-o", prefix + "2"], capture_output=True, text=True)
-    check(p.returncode == 2 and "--multiscale-case" in p.stderr and
-          not os.path.exists(prefix + "2.json"),
-          f"a multiscale folder without its case: exit {p.returncode}, {p.stderr.strip()!r}")
+    code, _, stderr = checkout_tool("direct_dem_compare.py", [grains, "--multiscale-runs", multi,
+                                                              "--at", "2", "-o", prefix + "2"])
+    check(code == 2 and "--multiscale-case" in stderr and not os.path.exists(prefix + "2.json"),
+          f"a multiscale folder without its case: exit {code}, {stderr.strip()!r}")
 
 
 def fabric_checks():
