@@ -52,7 +52,7 @@ def check(condition, message):
 # ended).
 SETTLEMENT = 0.12
 RUN = ["--settlement", str(SETTLEMENT), "--snapshots", "0.05", "--fields-every", "0.025",
-       "--checkpoint-steps", "20000", "--probes", "wedge", "far=1.5:1.2", "--probe-window", "3"]
+       "--checkpoint-steps", "20000", "--probes", "wedge", "far=1.5:1.2:2.5", "--probe-window", "3"]
 
 
 def run_tool(args, env=None, cwd=None):
@@ -107,6 +107,9 @@ def bad(work):
         ("no such probe place", TINY, ["--probes", "keel"], "--probes keel"),
         ("a probe's place not numbers", TINY, ["--probes", "a=x:1"], "--probes a=x:1"),
         ("a probe named twice", TINY, ["--probes", "far", "far=1:1"], "a name given twice"),
+        ("a probe's own side zero", TINY, ["--probes", "far=1:1:0"], "--probes far=1:1:0"),
+        ("a probe's own side wider than the block", TINY, ["--probes", "far=1:1:1000"],
+         "--probes far"),
         ("a probe window wider than the block", TINY, ["--probes", "far"], "--probe-window"),
     ]
     for name, case, extra, key in cases:
@@ -391,6 +394,13 @@ def probes_checked(out, s, prep):
               f"probe {name}: F = I at the start of loading, det F > 0 after")
         check(np.all(r["p"] > 0) and np.all(r["grains"] > 3) and np.all(r["contacts"] > 0),
               f"probe {name}: compressed grains in its window ({r['grains'][0]} grains)")
+    # each probe's own window: wedge --probe-window's 3 d, far its own 2.5 d
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    d = summary["B"] / summary["B_over_d"]
+    sides = {name: summary["probes"][name]["side_over_B"] * summary["B"] / d
+             for name in ("wedge", "far")}
+    check(abs(sides["wedge"] - 3.0) < 1e-9 and abs(sides["far"] - 2.5) < 1e-9,
+          f"each probe's window side: wedge {sides['wedge']:.4g} d, far {sides['far']:.4g} d")
     # the footing pushes the wedge down: its vertical stretch falls below 1
     wedge = rows[rows["probe"] == "wedge"]
     check(wedge["F22"][-1] < 1.0, f"the wedge is compressed (F22 = {wedge['F22'][-1]:.4f})")

@@ -7,7 +7,7 @@ usage: check_mpm_probes.py WORK DEM_RUN MPM_LIG
 
 - bad input: a window that holds no MPM point (--window 1e-4 B), a probe the DEM run does
   not have: exit 2 naming it, on one line, nothing written;
-- the run's probes (wedge, far): exit 0; the windows' side is the one the DEM run recorded; at
+- the run's probes (wedge, far): exit 0; each window's side is the one the DEM run recorded for it; at
   s/B = 0 the MPM's p is the volume-weighted mean of its points in the wedge window, computed
   here from results.h5; the grains' volumetric strain at every row is ln det F of probes.csv.
 """
@@ -53,8 +53,9 @@ def main():
     print(stdout)
     report = json.load(open(os.path.join(out, "mpm_probes.json")))
     recorded = json.load(open(os.path.join(dem, "summary.json")))["probes"]
-    check(abs(report["window_over_B"] - recorded["wedge"]["side_over_B"]) < 1e-12,
-          f"the DEM run's window ({report['window_over_B']:.4f} B)")
+    for name in ("wedge", "far"):
+        check(abs(report["windows_over_B"][name] - recorded[name]["side_over_B"]) < 1e-12,
+              f"probe {name}: the DEM run's own window ({report['windows_over_B'][name]:.4f} B)")
     rows = {}
     with open(os.path.join(out, "mpm_probes.csv")) as f:
         header = f.readline().strip().split(",")

@@ -101,16 +101,16 @@ def arguments():
                    help="DEM steps between checkpoints (default: about 3e9 particle-steps)")
     p.add_argument("--void-ratio-tolerance", type=cli.positive, help="the prepared void ratio's "
                    "tolerance (default: the case's preparation.void_ratio_tolerance, or 0.005)")
-    p.add_argument("--probes", nargs="+", metavar="NAME[=X:DEPTH]",
-                   help="windows of the RVE's size that follow their grains, with their F and "
-                   "the grains' own stress in probes.csv (named: wedge band passive far; or "
-                   "NAME=X:DEPTH, the centre in footing widths from the axis and below the "
-                   "surface), for tools/replay_direct_dem.py")
+    p.add_argument("--probes", nargs="+", metavar="NAME[=X:DEPTH[:SIDE]]",
+                   help="windows that follow their grains, with their F and the grains' own "
+                   "stress in probes.csv (named: wedge band passive far; or NAME=X:DEPTH, the "
+                   "centre in footing widths from the axis and below the surface, :SIDE its "
+                   "own window side in grain diameters), for tools/replay_direct_dem.py")
     p.add_argument("--probes-every", type=cli.positive,
                    help="s/B between probe rows (default 0.005)")
     p.add_argument("--probe-window", type=cli.positive, metavar="D",
-                   help="the probes' window side in grain diameters (default: the side of the "
-                   "case's RVE)")
+                   help="the window side in grain diameters of the probes without their own "
+                   "SIDE (default: the side of the case's RVE)")
     p.add_argument("--settle-damping", choices=("kinetic", "none"),
                    help="the settling under q_s: kinetic (default: the soil's velocities zeroed "
                    "at each maximum of its kinetic energy) or none (the contacts' damping only, "

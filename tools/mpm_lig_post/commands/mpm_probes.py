@@ -55,9 +55,10 @@ def hencky(F):
     return e.sum(axis=1), np.abs(e[:, 1] - e[:, 0])
 
 
-def mpm_windows(run, B, surface, centres, side):
+def mpm_windows(run, B, surface, centres):
     """{probe: {s_over_B, p, q, volumetric, deviatoric}} of an MPM run: each output step's
-    points in each window (reference positions), volume-weighted."""
+    points in each window (centres: {probe: (x/B, depth/B, side/B)}; reference positions),
+    volume-weighted."""
     history = read_history(os.path.join(run, "history.csv"))
     require_columns(history, ("step", "settlement"), run)
     settlement = dict(zip(history["step"].astype(int), history["settlement"]))
@@ -71,7 +72,7 @@ def mpm_windows(run, B, surface, centres, side):
             at = fields.step(step)
             x = at["positions"][:, :2] - at["displacement"][:, :2]
             stress, strain, volume = at["stress"], at["strain"], at["volume"].ravel()
-            for name, (cx, depth) in centres.items():
+            for name, (cx, depth, side) in centres.items():
                 centre = np.array([cx * B, surface - depth * B])
                 inside = np.all(np.abs(x - centre) <= 0.5 * side * B, axis=1)
                 if not inside.any():
@@ -153,28 +154,29 @@ def main():
             raise InputError(f"--probes {name}: {a.dem_run}/probes.csv has "
                              f"{', '.join(sorted(probes))}")
         if name in recorded:
-            centres[name] = (recorded[name]["x_over_B"], recorded[name]["depth_over_B"])
+            x, depth = recorded[name]["x_over_B"], recorded[name]["depth_over_B"]
         elif name in PLACES:
-            centres[name] = PLACES[name]
+            x, depth = PLACES[name]
         else:
             raise InputError(f"probe {name}: its centre is neither recorded in "
                              f"{a.dem_run}/summary.json nor a named place")
-    side = a.window or recorded.get(names[0], {}).get("side_over_B")
-    if not side:
-        raise InputError(f"{a.dem_run}/summary.json records no probe window (a run before "
-                         "windows were recorded): give --window (footing widths)")
+        side = a.window or recorded.get(name, {}).get("side_over_B")
+        if not side:
+            raise InputError(f"{a.dem_run}/summary.json records no window for probe {name} (a "
+                             "run before windows were recorded): give --window (footing widths)")
+        centres[name] = (x, depth, side)
     out = os.path.abspath(a.output)
     cli.writable_folder(out)
     if os.path.isdir(out) and os.listdir(out):
         raise InputError(f"{out}: not empty (choose a new folder)")
-    mpm = mpm_windows(a.mpm_run, B, surface, centres, side)
-    report = {"mpm_run": a.mpm_run, "dem_run": a.dem_run, "B_mpm": B, "window_over_B": side,
-              "p0": p0, "ratio_gap": a.ratio_gap, "pressure_gap": a.pressure_gap, "probes": {}}
+    mpm = mpm_windows(a.mpm_run, B, surface, centres)
+    report = {"mpm_run": a.mpm_run, "dem_run": a.dem_run, "B_mpm": B,
+              "windows_over_B": {name: centres[name][2] for name in names}, "p0": p0, "ratio_gap": a.ratio_gap, "pressure_gap": a.pressure_gap, "probes": {}}
     tables = {}
     for name in names:
         if not len(mpm[name]["s_over_B"]):
-            raise InputError(f"probe {name}: no MPM point in its window (centre {centres[name]} "
-                             f"B, side {side:.3g} B)")
+            raise InputError(f"probe {name}: no MPM point in its window (centre "
+                             f"{centres[name][:2]} B, side {centres[name][2]:.3g} B)")
         tables[name], report["probes"][name] = compare(probes[name], mpm[name], p0,
                                                        a.ratio_gap, a.pressure_gap)
     os.makedirs(out, exist_ok=True)

@@ -1,4 +1,4 @@
-"""Probes of a direct DEM (--probes): at chosen places, windows of the RVE's size that follow
+"""Probes of a direct DEM (--probes): at chosen places, windows (the RVE's size unless given) that follow
 their grains, with the window's deformation gradient (least squares of the grains' affine map
 from the start of loading) and its grains' own stress (Love-Weber, love_weber.py) every
 --probes-every s/B, in probes.csv. tools/replay_direct_dem.py drives RVEs along each window's F
@@ -58,26 +58,37 @@ def read_probes(run):
 
 
 def parse(names):
-    """[(name, x/B, depth/B)] from NAME or NAME=X:DEPTH (B units); InputError naming a bad one."""
+    """[(name, x/B, depth/B, side in grain diameters or None)] from NAME or
+    NAME=X:DEPTH[:SIDE] (X, DEPTH in footing widths); InputError naming a bad one. A probe
+    without its own SIDE takes --probe-window's."""
     probes = []
     for text in names:
         name, _, where = text.partition("=")
+        side = None
         if where:
             try:
-                x, depth = (float(v) for v in where.split(":"))
+                values = [float(v) for v in where.split(":")]
             except ValueError:
-                raise InputError(f"--probes {text}: give NAME or NAME=X:DEPTH (in footing "
-                                 "widths)") from None
+                values = []
+            if len(values) not in (2, 3):
+                raise InputError(f"--probes {text}: give NAME or NAME=X:DEPTH[:SIDE] (X, DEPTH "
+                                 "in footing widths, SIDE in grain diameters)")
+            x, depth = values[:2]
             if not (math.isfinite(x) and math.isfinite(depth) and x >= 0 and depth >= 0):
                 raise InputError(f"--probes {text}: X and DEPTH must be finite and >= 0")
+            if len(values) == 3:
+                side = values[2]
+                if not (math.isfinite(side) and side > 0):
+                    raise InputError(f"--probes {text}: SIDE must be a finite number of grain "
+                                     "diameters > 0")
         elif name in PLACES:
             x, depth = PLACES[name]
         else:
             raise InputError(f"--probes {text}: no such place (named ones: "
-                             f"{', '.join(PLACES)}; or NAME=X:DEPTH in footing widths)")
+                             f"{', '.join(PLACES)}; or NAME=X:DEPTH[:SIDE])")
         if not name.isidentifier():
             raise InputError(f"--probes {text}: a probe's name is letters, digits and _")
-        probes.append((name, x, depth))
+        probes.append((name, x, depth, side))
     if len({p[0] for p in probes}) != len(probes):
         raise InputError("--probes: a name given twice")
     return probes
@@ -85,12 +96,12 @@ def parse(names):
 
 def check_probes(pb, a):
     """The probes' names and windows, before anything runs: InputError naming the option."""
-    probes = parse(a.probes)
-    side = window_side(pb, a)
-    if probes and side > min(pb["box"]):
-        raise InputError(f"--probes: the window ({side:.3g} m, {side / pb['d']:.3g} d) is wider "
-                         f"than the block ({min(pb['box']):.3g} m): choose a smaller "
-                         "--probe-window or a larger --scale")
+    for name, _, _, own in parse(a.probes):
+        side = own * pb["d"] if own else window_side(pb, a)
+        if side > min(pb["box"]):
+            raise InputError(f"--probes {name}: the window ({side:.3g} m, {side / pb['d']:.3g} "
+                             f"d) is wider than the block ({min(pb['box']):.3g} m): choose a "
+                             "smaller --probe-window or SIDE, or a larger --scale")
 
 
 def window_side(pb, a):
@@ -107,13 +118,14 @@ def rve_side(pb):
 
 def windows(pb, probes, side, lx, ly):
     """{name: (centre (2,), side)} in block coordinates: x from the axis, y up from the base,
-    the surface at ly; clamped into the block."""
-    half = 0.5 * side
+    the surface at ly; clamped into the block. side: of the probes without their own."""
     out = {}
-    for name, x, depth in probes:
+    for name, x, depth, own in probes:
+        own_side = own * pb["d"] if own else side
+        half = 0.5 * own_side
         cx = min(max(x * pb["B"], half), lx - half)
         cy = min(max(ly - depth * pb["B"], half), ly - half)
-        out[name] = (np.array([cx, cy]), side)
+        out[name] = (np.array([cx, cy]), own_side)
     return out
 
 
