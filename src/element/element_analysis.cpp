@@ -277,7 +277,10 @@ nlohmann::json recorded_summary(const RecordedPath& p) {
     fixed += p.substeps[k] > 0;
   }
   j["recorded_increments"] = exact;  // applied as recorded, not as F_{k+1} F_k^-1
-  j["recorded_substeps"] = fixed;    // run with the file's sub-steps, not the RVE's rule
+  j["volume"] = p.free_volume ? "free" : "recorded";
+  if (p.free_volume)
+    j["pressure_tolerance"] = p.pressure_tolerance;
+  j["recorded_substeps"] = fixed;  // run with the file's sub-steps, not the RVE's rule
   return j;
 }
 
@@ -300,6 +303,9 @@ std::unique_ptr<StrainPath> ElementTest::plan_strain_path(rve::Rve& rve,
   if (test_.kind == TestKind::kDrainedCompression) {
     stiffness = lateral_stiffness(rve);
     summary["confining_pressure"] = confining_pressure(now);
+    summary["servo_stiffness"] = stiffness;
+  } else if (test_.recorded && test_.recorded->free_volume) {
+    stiffness = lateral_stiffness(rve);
     summary["servo_stiffness"] = stiffness;
   }
   return make_strain_path(test_, rve_.dimension, confining_pressure(now), stiffness);

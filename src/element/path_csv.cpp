@@ -41,6 +41,7 @@ std::vector<std::string> fields(const std::string& line) {
 struct Layout {
   int time = -1;
   int substeps = -1;
+  int mean_stress = -1;  //!< column p
   std::array<int, 9> component;
   bool full = false;  //!< all nine components (else the plane four)
   std::size_t columns = 0;
@@ -50,7 +51,8 @@ Layout read_header(const std::vector<std::string>& names, const std::string& whe
   Layout layout;
   layout.component.fill(-1);
   layout.columns = names.size();
-  std::map<std::string, int*> known = {{"time", &layout.time}, {"substeps", &layout.substeps}};
+  std::map<std::string, int*> known = {
+      {"time", &layout.time}, {"substeps", &layout.substeps}, {"p", &layout.mean_stress}};
   for (int c = 0; c < 9; ++c)
     known[kComponent[c]] = &layout.component[c];
   for (std::size_t k = 0; k < names.size(); ++k) {
@@ -58,7 +60,7 @@ Layout read_header(const std::vector<std::string>& names, const std::string& whe
     if (it == known.end())
       throw PathFileError(where + ": unknown column '" + names[k] +
                           "' (columns: time, F11, F12, F21, F22 [, F13, F23, F31, F32, F33] "
-                          "[, substeps])");
+                          "[, substeps] [, p])");
     if (*it->second >= 0)
       throw PathFileError(where + ": column '" + names[k] + "' appears twice");
     *it->second = static_cast<int>(k);
@@ -125,6 +127,8 @@ RecordedPath read_path_csv(const std::string& file) {
     path.label.push_back(label);
     path.time.push_back(number(values[layout->time], where, "time"));
     path.F.push_back(F);
+    if (layout->mean_stress >= 0)
+      path.mean_stress.push_back(number(values[layout->mean_stress], where, "p"));
     if (layout->substeps >= 0) {
       const double n = number(values[layout->substeps], where, "substeps");
       if (!(n >= 0.0 && n <= 1e9 && n == std::floor(n)))

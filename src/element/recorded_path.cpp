@@ -149,6 +149,23 @@ RecordedPath read_results_path(const CaseNode& node) {
   return path;
 }
 
+//! "volume": "free" (the mean stress of column p held, the isochoric part of F imposed) or
+//! "recorded" (the default: F as recorded, p ignored).
+void read_volume_control(const CaseNode& node, RecordedPath& path) {
+  path.free_volume = node.choice_or("volume", {"recorded", "free"}, "recorded") == "free";
+  if (!path.free_volume)
+    return;
+  path.pressure_tolerance = node.in_range_or("pressure_tolerance", 1e-4, 0.1, 0.005);
+  if (path.mean_stress.size() != path.F.size())
+    node.fail("volume",
+              "free needs a CSV path (csv) with a column p: the mean stress [Pa] "
+              "to hold the RVE at");
+  for (std::size_t k = 0; k < path.F.size(); ++k)
+    if (!(std::isfinite(path.mean_stress[k]) && path.mean_stress[k] > 0.0))
+      node.fail("volume", "'" + path.source + "' " + path.label[k] + ": p is " +
+                              shown(path.mean_stress[k]) + ", must be finite and > 0");
+}
+
 class RecordedStrainPath : public StrainPath {
  public:
   explicit RecordedStrainPath(std::shared_ptr<const RecordedPath> path) : path_(std::move(path)) {}
@@ -159,6 +176,87 @@ class RecordedStrainPath : public StrainPath {
 
  private:
   std::shared_ptr<const RecordedPath> path_;
+};
+
+//! A recorded path with a free volume: each increment imposes the isochoric part of the
+//! recorded one (its volume scaled out, in the plane for a 2D RVE) times a predicted isotropic
+//! stretch; corrections within the increment then stretch the cell isotropically until its mean
+//! stress is the recorded row's. As the drained test's servo (strain_path.cpp): the prediction
+//! learns the steady dilatancy from the error each increment's own step left, and the
+//! stiffness is re-estimated from each correction's response, separately for expanding and
+//! contracting, within [1/50, 4] times the first estimate.
+class FreeVolumePath : public StrainPath {
+ public:
+  FreeVolumePath(std::shared_ptr<const RecordedPath> path, int dimension, double stiffness)
+      : path_(std::move(path)),
+        axes_(dimension),
+        first_stiffness_(stiffness),
+        expanding_(stiffness),
+        contracting_(stiffness) {}
+  int increments() const override { return static_cast<int>(path_->intervals()); }
+  int substeps(int k) const override { return path_->substeps[k]; }
+  Mat3 start() const override { return path_->F.front(); }
+
+  Mat3 increment(int k, const Mat3& stress) override {
+    target_ = path_->mean_stress[k + 1];
+    if (k > 0)
+      trend_ += kTrendGain * after_step_ / stiffness(after_step_);
+    const Mat3 dF = path_->increment(k);
+    const double volume = axes_ == 2 ? dF.topLeftCorner<2, 2>().determinant() : dF.determinant();
+    last_correction_ = false;
+    return isotropic(trend_ + excess(stress) / stiffness(excess(stress)) -
+                     std::log(volume) / axes_) *
+           dF;
+  }
+
+  std::optional<Mat3> correction(const Mat3& stress) override {
+    if (last_correction_)
+      update_stiffness(stress);
+    else
+      after_step_ = excess(stress);
+    if (std::abs(excess(stress)) <= path_->pressure_tolerance * target_)
+      return std::nullopt;
+    applied_ = excess(stress) / stiffness(excess(stress));
+    before_ = mean(stress);
+    last_correction_ = true;
+    return isotropic(applied_);
+  }
+
+ private:
+  //! Compression-positive mean stress over the axes (in-plane in 2D).
+  double mean(const Mat3& stress) const {
+    return axes_ == 2 ? -0.5 * (stress(0, 0) + stress(1, 1)) : -stress.trace() / 3.0;
+  }
+  //! Mean stress above the target (> 0: the cell must expand).
+  double excess(const Mat3& stress) const { return mean(stress) - target_; }
+  double& stiffness(double expand) { return expand > 0.0 ? expanding_ : contracting_; }
+  //! Equal log stretch `e` of every axis (in the plane for a 2D RVE).
+  Mat3 isotropic(double e) const {
+    Mat3 dF = Mat3::Identity();
+    for (int i = 0; i < axes_; ++i)
+      dF(i, i) = std::exp(e);
+    return dF;
+  }
+  void update_stiffness(const Mat3& stress) {
+    const double response = before_ - mean(stress);  // the fall of the mean stress
+    if (!(applied_ != 0.0) || !(response / applied_ > 0.0))
+      return;
+    double& k = stiffness(applied_);
+    k = std::clamp(std::sqrt(k * response / applied_), first_stiffness_ / 50.0,
+                   4.0 * first_stiffness_);
+  }
+
+  std::shared_ptr<const RecordedPath> path_;
+  int axes_;
+  double first_stiffness_;
+  double expanding_, contracting_;  //!< stiffness estimates [Pa per unit per-axis strain]
+  double target_ = 0.0;             //!< the mean stress of the increment's end row
+  double trend_ = 0.0;              //!< predicted per-axis log strain per increment
+  double after_step_ = 0.0;         //!< mean-stress error the last step left [Pa]
+  static constexpr double kTrendGain = 0.5;
+  double applied_ = 0.0;  //!< per-axis log strain of the last correction
+  double before_ = 0.0;   //!< mean stress before it
+  bool last_correction_ = false;
 };
 
 //! ΔF·M = T for square M, T of size N: ΔF's rows solve Mᵀ xᵢ = tᵢ one by one. Eigen divides by
@@ -211,10 +309,14 @@ std::shared_ptr<const RecordedPath> read_recorded_path(const CaseNode& node, int
     path = read_results_path(node);
   }
   check_rows(path, dimension, node, key);
+  read_volume_control(node, path);
   return std::make_shared<const RecordedPath>(std::move(path));
 }
 
-std::unique_ptr<StrainPath> make_recorded_strain_path(std::shared_ptr<const RecordedPath> path) {
+std::unique_ptr<StrainPath> make_recorded_strain_path(std::shared_ptr<const RecordedPath> path,
+                                                      int dimension, double stiffness) {
+  if (path->free_volume)
+    return std::make_unique<FreeVolumePath>(std::move(path), dimension, stiffness);
   return std::make_unique<RecordedStrainPath>(std::move(path));
 }
 

@@ -28,6 +28,12 @@ struct RecordedPath {
   //! Per interval: DEM steps to run (CSV column `substeps`, or the recording run's own with
   //! results.h5 and "substeps": "recorded"); 0: the RVE's sub-stepping rule.
   std::vector<int> substeps;
+  //! Per row: the mean stress [Pa, compression positive; in-plane for a 2D RVE] to hold the RVE
+  //! at (CSV column `p`); used with "volume": "free", where the RVE takes only the isochoric
+  //! part of each increment and its volume follows this stress instead of det F.
+  std::vector<double> mean_stress;
+  bool free_volume = false;           //!< "volume": "free"
+  double pressure_tolerance = 0.005;  //!< free volume: relative tolerance of the mean stress
 
   std::size_t intervals() const { return F.empty() ? 0 : F.size() - 1; }
   //! The increment of interval k: the recorded one, or F_{k+1} F_k^-1.
@@ -38,13 +44,18 @@ struct RecordedPath {
 //! quotient; when both are plane (2D) deformations the out-of-plane part is exactly identity.
 Mat3 increment_between(const Mat3& from, const Mat3& to);
 
-//! Reads and checks `analysis.path` for an RVE of `dimension`: {"csv": FILE} or {"results":
-//! FILE, "point": i, "substeps": "rule" | "recorded"}. Every row must have a finite F with
-//! det F > 0 (a 2D RVE: plane F) and its time must exceed the previous row's; a problem is a
+//! Reads and checks `analysis.path` for an RVE of `dimension`: {"csv": FILE, "volume":
+//! "recorded" | "free"} or {"results": FILE, "point": i, "substeps": "rule" | "recorded"}.
+//! "free" needs the CSV's column p, finite and > 0 on every row. Every row must have a finite F
+//! with det F > 0 (a 2D RVE: plane F) and its time must exceed the previous row's; a problem is a
 //! CaseError at the key that named the file, with the row (CSV) or step group (results.h5).
 std::shared_ptr<const RecordedPath> read_recorded_path(const CaseNode& path, int dimension);
 
-//! The strain path of a recorded history.
-std::unique_ptr<StrainPath> make_recorded_strain_path(std::shared_ptr<const RecordedPath> path);
+//! The strain path of a recorded history; with a free volume, a servo holds the RVE's mean
+//! stress at the recorded one within the path's `pressure_tolerance` (relative) by isotropic
+//! corrections, from a first stiffness estimate `stiffness` [Pa per unit per-axis strain], for
+//! an RVE of `dimension`.
+std::unique_ptr<StrainPath> make_recorded_strain_path(std::shared_ptr<const RecordedPath> path,
+                                                      int dimension, double stiffness);
 
 }  // namespace mpm_lig::element

@@ -158,7 +158,7 @@ std::unique_ptr<StrainPath> make_strain_path(const ElementTestSpec& test, int di
     case TestKind::kUndrainedCyclicSimpleShear:
       return std::make_unique<CyclicSimpleShearPath>(test);
     case TestKind::kRecordedPath:
-      return make_recorded_strain_path(test.recorded);
+      return make_recorded_strain_path(test.recorded, dimension, lateral_stiffness);
   }
   return nullptr;
 }

@@ -29,8 +29,8 @@ class StrainPath {
 };
 
 //! The path of `test` for an RVE of `dimension`; `lateral_stiffness` [Pa per unit strain] is
-//! the servo's first estimate of the packing's lateral stiffness (drained tests). A recorded
-//! path comes from recorded_path.h.
+//! the servo's first estimate of the packing's stiffness (drained tests, recorded paths with a
+//! free volume). A recorded path comes from recorded_path.h.
 std::unique_ptr<StrainPath> make_strain_path(const ElementTestSpec& test, int dimension,
                                              double confining_pressure, double lateral_stiffness);
 

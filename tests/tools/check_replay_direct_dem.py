@@ -7,7 +7,11 @@ usage: check_replay_direct_dem.py WORK RUN MPM_LIG
 - bad input: exit 2, named, on one line, the output folder not created;
 - a replay of the probe "far" on one RVE: exit 0, one RVE history row per probe row, and the
   RVE's Hencky strain at every row equal to 1/2 ln(F F^T) of the probe's F (the path reached
-  the RVE as the grains went through it), replay.json and replay.png written.
+  the RVE as the grains went through it), replay.json and replay.png written;
+- the same with --volume free: the RVE's in-plane deviatoric strain is the probe's, its p the
+  grains' within 2 % at every row after the first (its volume follows their stress, not
+  det F), and the
+  volumetric strains of both are in the --at state.
 """
 import json
 import os
@@ -95,6 +99,41 @@ def main():
           f"{far['s_over_B'][k]:.3f}): {state}")
     check(os.path.getsize(os.path.join(out, "replay.png")) > 0, "replay.png drawn")
     check("| far |" in stdout, "the table printed")
+    free_volume(work, run, mpm_lig, far)
+
+
+def free_volume(work, run, mpm_lig, far):
+    out = os.path.join(work, "replay_free")
+    code, _, stderr = tool([TINY, run, "-o", out, "--mpm-lig", mpm_lig, "--probes", "far",
+                            "--seeds", "11", "--at", "0.05", "--volume", "free"])
+    check(code == 0, f"--volume free: exit 0 ({stderr.strip()[-200:]})")
+    if code != 0:
+        return
+    history = np.genfromtxt(os.path.join(out, "runs", "far_s11", "history.csv"), delimiter=",",
+                            names=True)
+    n = min(len(history), len(far))
+    # row 0 is the RVE's prepared packing, at its own p0: the servo holds p from the first
+    # increment on
+    worst_p = float(np.max(np.abs(history["p"][1:n] - far["p"][1:n]) / far["p"][1:n]))
+    worst_dev = 0.0
+    for k in range(n):
+        F = np.array([[far["F11"][k], far["F12"][k]], [far["F21"][k], far["F22"][k]]])
+        want = hencky_left(F)
+        got = np.array([[history["e_xx"][k], history["e_xy"][k]],
+                        [history["e_xy"][k], history["e_yy"][k]]])
+        worst_dev = max(worst_dev, np.abs((got - np.trace(got) / 2 * np.eye(2)) -
+                                          (want - np.trace(want) / 2 * np.eye(2))).max())
+    check(len(history) == len(far) and worst_p <= 0.02,
+          f"--volume free: the RVE's p is the grains' within 2 % at every row after the first ({worst_p:.2%})")
+    check(worst_dev < 1e-6, f"--volume free: the RVE's deviatoric strain is the probe's "
+          f"(worst {worst_dev:.1e})")
+    state = json.load(open(os.path.join(out, "replay.json")))["probes"]["far"]["at"]["0.05"]
+    k = int(np.argmin(np.abs(far["s_over_B"] - 0.05)))
+    det = far["F11"][k] * far["F22"][k] - far["F12"][k] * far["F21"][k]
+    check(abs(state["grains_volumetric"] - np.log(det)) < 1e-12 and
+          abs(state["rve_volumetric"] - history["e_vol"][k]) < 1e-12,
+          f"--volume free: the volumetric strains at s/B 0.05 ({state['grains_volumetric']:.2e} "
+          f"grains, {state['rve_volumetric']:.2e} RVE)")
 
 
 if __name__ == "__main__":

@@ -106,7 +106,25 @@ OTHER_CASES = [
     ("strain_increment", {"test": "recorded_path", "path": {"csv": "ok.csv"},
                           "strain_increment": 1e-4},
      r"analysis\.strain_increment"),
+    # a free volume needs the mean stress to hold: column p, finite and > 0
+    ("free_without_p", {"test": "recorded_path", "path": {"csv": "ok.csv", "volume": "free"}},
+     r"analysis\.path\.volume: free needs a CSV path \(csv\) with a column p"),
+    ("free_results", {"test": "recorded_path", "path": {"results": "ok.h5", "point": 3,
+                                                        "volume": "free"}},
+     r"analysis\.path\.volume: free needs a CSV path"),
+    ("free_p_zero", {"test": "recorded_path", "path": {"csv": "p_zero.csv", "volume": "free"}},
+     r"analysis\.path\.volume: '.*p_zero\.csv' row 2 \(line 3\): p is 0, must be finite"),
+    ("free_p_nan", {"test": "recorded_path", "path": {"csv": "p_nan.csv", "volume": "free"}},
+     r"analysis\.path\.volume: '.*p_nan\.csv' row 3 \(line 4\): p is nan"),
+    ("volume_unknown", {"test": "recorded_path", "path": {"csv": "ok.csv", "volume": "loose"}},
+     r"analysis\.path\.volume"),
+    ("free_tolerance", {"test": "recorded_path", "path": {"csv": "ok_p.csv", "volume": "free",
+                                                          "pressure_tolerance": 0.5}},
+     r"analysis\.path\.pressure_tolerance"),
 ]
+
+GOOD_P = ["time,F11,F12,F21,F22,p", "0,1,0,0,1,1e5", "1,0.999,0,0,0.999,1.1e5",
+          "2,0.998,0.001,0,0.998,1.2e5"]
 
 
 def expect_refusal(mpm_lig, case_file, out, regex, failures):
@@ -127,6 +145,12 @@ def main():
     os.makedirs(work)
     with open(os.path.join(work, "ok.csv"), "w") as f:
         f.write(csv_with())
+    for name, row, text in (("ok_p", 1, GOOD_P[1]), ("p_zero", 2, "1,0.999,0,0,0.999,0"),
+                            ("p_nan", 3, "2,0.998,0.001,0,0.998,nan")):
+        lines = list(GOOD_P)
+        lines[row] = text
+        with open(os.path.join(work, name + ".csv"), "w") as f:
+            f.write("\n".join(lines) + "\n")
     results_h5(os.path.join(work, "ok.h5"))
     cases = []
     for name, text, regex in CSV_CASES:
@@ -145,6 +169,7 @@ def main():
         expect_refusal(mpm_lig, case_file, os.path.join(work, name + "_out"), regex, failures)
     # The good files themselves pass (so that every refusal above is the file's problem).
     for name, path in (("ok_csv", {"csv": "ok.csv"}), ("ok_h5", {"results": "ok.h5", "point": 3}),
+                       ("ok_free", {"csv": "ok_p.csv", "volume": "free"}),
                        ("ok_recorded", {"results": "ok.h5", "point": 3, "substeps": "recorded"})):
         case_file = os.path.join(work, name + ".json")
         with open(case_file, "w") as f:

@@ -23,11 +23,12 @@ import csv
 import json
 import os
 import shutil
-import subprocess
 import sys
 
 import h5py
 import numpy as np
+
+from element_runs import run
 
 # A replay from F alone applies increments that differ from the run's by round-off (F_{k+1}
 # was rounded when the run computed dF F_k, so F_{k+1} F_k^-1 is not dF bit for bit: about
@@ -43,12 +44,6 @@ REPLAY_FROM_F_TOLERANCE = 1e-12
 RULE_TOLERANCE = 0.05
 
 VOIGT = ["xx", "yy", "zz", "xy", "xz", "yz"]
-
-
-def run(command, log):
-    with open(log, "w") as out:
-        if subprocess.call(command, stdout=out, stderr=subprocess.STDOUT) != 0:
-            sys.exit(f"FAILED: {' '.join(command)}\n{open(log).read()}")
 
 
 def history(out):

@@ -3,7 +3,7 @@
 
 usage: replay_direct_dem.py CASE.json RUN_DIR -o OUT_DIR [--mpm-lig build/mpm_lig]
                             [--probes NAME ...] [--seeds 11 12 13] [--upto S] [--at S ...]
-                            [--dpi N]
+                            [--volume recorded|free] [--dpi N]
 
 RUN_DIR/probes.csv holds, for each probe (a window of the RVE's size that follows its grains),
 the window's deformation gradient F from the start of loading and its grains' own stress
@@ -11,7 +11,11 @@ the window's deformation gradient F from the start of loading and its grains' ow
 recorded path (OUT_DIR/paths/PROBE.csv), an element test of "test": "recorded_path" on CASE's
 rve node with that seed (OUT_DIR/cases/PROBE_sSEED.json) and runs it with mpm_lig
 (OUT_DIR/runs/PROBE_sSEED/): the RVE goes through the grains' deformation with the coupling's
-increments and sub-step rule, from its own prepared packing. It then prints, per probe, the
+increments and sub-step rule, from its own prepared packing. With --volume free the RVE takes
+only the isochoric part of the window's F and its volume follows the grains' mean stress (the
+path's column p): the RVE's dilatancy and stress ratio beside the grains' on their shear path,
+without the volumetric stiffness that turns a small error of the window's det F into a large
+one of p. It then prints, per probe, the
 grains' and the RVEs' largest stress ratio q/p (2D: Mohr-circle radius over in-plane mean
 stress) and where, the RVEs' mean over seeds and its spread, and the mean and largest
 difference of p and of q/p along the path (p over the preparation pressure p0), and with --at
@@ -38,29 +42,31 @@ from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_MPM_LIG = os.path.normpath(os.path.join(HERE, "..", "..", "..", "build", "mpm_lig"))
-def write_path(path, table, rows):
+def write_path(path, table, rows, free_volume):
+    """The probe's F (and, for a free volume, the grains' mean stress p) as a recorded path."""
+    columns = ("time", "F11", "F12", "F21", "F22") + (("p",) if free_volume else ())
     with open(path, "w") as f:
         f.write("# the deformation gradient of a direct-DEM probe window (replay_direct_dem.py)\n")
-        f.write("time,F11,F12,F21,F22\n")
+        f.write(",".join(columns) + "\n")
         for k in range(rows):
-            f.write(",".join("%.17g" % table[c][k] for c in ("time", "F11", "F12", "F21", "F22"))
-                    + "\n")
+            f.write(",".join("%.17g" % table[c][k] for c in columns) + "\n")
 
 
-def element_case(rve, seed, path_csv, title):
+def element_case(rve, seed, path_csv, title, free_volume):
     node = copy.deepcopy(rve)
     node["seed"] = seed
     node.pop("restart_file", None)
+    path = {"csv": path_csv, "volume": "free" if free_volume else "recorded"}
     return {"title": title, "rve": node,
             "analysis": {"type": "element_test", "test": "recorded_path",
-                         "path": {"csv": path_csv}, "save_restart": False}}
+                         "path": path, "save_restart": False}}
 
 
 def replay(mpm_lig, case_path, out):
     """Run one element test; its history (exit 1 naming the log when it fails)."""
     run_case(mpm_lig, case_path, out, out + ".log")
     history = read_history(os.path.join(out, "history.csv"))
-    require_columns(history, ("s_xx", "s_yy", "s_xy", "p", "q"), out)
+    require_columns(history, ("s_xx", "s_yy", "s_xy", "p", "q", "e_vol"), out)
     return history
 
 
@@ -68,21 +74,30 @@ def ratio(p, q):
     return np.where(p > 0, q / np.maximum(p, 1e-300), np.nan)
 
 
+def volumetric(grains):
+    """The grains' volumetric log strain, ln det F of their window."""
+    return np.log(grains["F11"] * grains["F22"] - grains["F12"] * grains["F21"])
+
+
 def states_at(grains, rves, p0, at):
-    """{s/B: grains' and RVEs' (mean, std) p/p0 and q/p} at the rows nearest each `at`."""
+    """{s/B: grains' and RVEs' (mean, std) p/p0, q/p and volumetric strain} at the rows nearest
+    each `at`."""
     out = {}
+    g_vol = volumetric(grains)
     for s in at:
         k = int(np.argmin(np.abs(grains["s_over_B"] - s)))
-        rows = [(h["p"][k] / p0, ratio(h["p"][k], h["q"][k])) for h in rves.values()
-                if len(h["p"]) > k]
+        rows = [(h["p"][k] / p0, ratio(h["p"][k], h["q"][k]), h["e_vol"][k])
+                for h in rves.values() if len(h["p"]) > k]
         if not rows:
             continue
-        p, r = np.array(rows, float).T
+        p, r, v = np.array(rows, float).T
         out[f"{s:g}"] = {"s_over_B": float(grains["s_over_B"][k]),
                          "grains_p_over_p0": float(grains["p"][k] / p0),
                          "grains_ratio": float(ratio(grains["p"][k], grains["q"][k])),
+                         "grains_volumetric": float(g_vol[k]),
                          "rve_p_over_p0": float(p.mean()), "rve_p_over_p0_std": sample_std(p),
-                         "rve_ratio": float(r.mean()), "rve_ratio_std": sample_std(r)}
+                         "rve_ratio": float(r.mean()), "rve_ratio_std": sample_std(r),
+                         "rve_volumetric": float(v.mean()), "rve_volumetric_std": sample_std(v)}
     return out
 
 
@@ -132,8 +147,12 @@ def main():
     p.add_argument("--upto", type=cli.positive, help="replay rows up to this s/B (default all)")
     p.add_argument("--at", type=cli.non_negative, nargs="+", default=[],
                    help="s/B at which the grains' and the RVEs' p and q/p are set side by side")
+    p.add_argument("--volume", choices=("recorded", "free"), default="recorded",
+                   help="the RVE's volume: the window's det F (recorded, the default) or free, "
+                   "following the grains' mean stress with the isochoric part of F imposed")
     p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
+    free = a.volume == "free"
     case = read_json(a.case)
     pb = problem(case, a.case, 1.0)
     rve, p0 = pb["rve"], pb["p0"]
@@ -154,7 +173,8 @@ def main():
         raise InputError(f"{out}: not empty (choose a new folder)")
     for sub in ("paths", "cases", "runs"):
         os.makedirs(os.path.join(out, sub), exist_ok=True)
-    report = {"case": a.case, "run": a.run, "p0": p0, "seeds": seeds, "probes": {}}
+    report = {"case": a.case, "run": a.run, "p0": p0, "seeds": seeds, "volume": a.volume,
+              "probes": {}}
     histories = {}
     for name in names:
         table = probes[name]
@@ -163,14 +183,18 @@ def main():
         rows = max(rows, 2)
         grains = {k: v[:rows] for k, v in table.items()}
         path_csv = os.path.join(out, "paths", f"{name}.csv")
-        write_path(path_csv, table, rows)
+        if free and not np.all(table["p"][:rows] > 0):
+            raise InputError(f"--volume free: probe {name}'s grains carry no compression at "
+                             f"s/B {table['s_over_B'][int(np.argmin(table['p'][:rows]))]:.3f} "
+                             "(p <= 0): replay it to a smaller --upto")
+        write_path(path_csv, table, rows, free)
         histories[name] = {}
         for seed in seeds:
             case_path = os.path.join(out, "cases", f"{name}_s{seed}.json")
             with open(case_path, "w") as f:
                 json.dump(element_case(rve, seed, os.path.join("..", "paths", f"{name}.csv"),
-                                       f"probe {name} of {a.run} on an RVE of seed {seed}"),
-                          f, indent=1)
+                                       f"probe {name} of {a.run} on an RVE of seed {seed}",
+                                       free), f, indent=1)
             print(f"replaying probe {name} ({rows} rows, to s/B "
                   f"{grains['s_over_B'][-1]:.3f}) on the RVE of seed {seed}", flush=True)
             histories[name][seed] = replay(a.mpm_lig, case_path,
@@ -180,7 +204,7 @@ def main():
     print_table(report)
     with open(os.path.join(out, "replay.json"), "w") as f:
         json.dump(report, f, indent=1)
-    picture(os.path.join(out, "replay.png"), probes, histories, names, report, p0, a.dpi)
+    picture(os.path.join(out, "replay.png"), probes, histories, names, report, p0, a.dpi, free)
 
 
 def print_table(report):
@@ -197,15 +221,20 @@ def print_table(report):
               f"{np.mean([s['final_p_over_p0'] for s in seeds]):.2f} |")
     states = [(name, s) for name, r in report["probes"].items() for s in r["at"].values()]
     if states:
-        print("\n| probe | s/B | p / p0, grains | p / p0, RVEs | q/p, grains | q/p, RVEs |")
-        print("|---|---|---|---|---|---|")
+        print("\n| probe | s/B | p / p0, grains | p / p0, RVEs | q/p, grains | q/p, RVEs | "
+              "ln det F, grains | e_vol, RVEs |")
+        print("|---|---|---|---|---|---|---|---|")
         for name, s in states:
             print(f"| {name} | {s['s_over_B']:.3f} | {s['grains_p_over_p0']:.2f} | "
                   f"{s['rve_p_over_p0']:.2f} ± {s['rve_p_over_p0_std']:.2f} | "
-                  f"{s['grains_ratio']:.3f} | {s['rve_ratio']:.3f} ± {s['rve_ratio_std']:.3f} |")
+                  f"{s['grains_ratio']:.3f} | {s['rve_ratio']:.3f} ± {s['rve_ratio_std']:.3f} | "
+                  f"{s['grains_volumetric']:.4f} | {s['rve_volumetric']:.4f} ± "
+                  f"{s['rve_volumetric_std']:.4f} |")
 
 
-def picture(path, probes, histories, names, report, p0, dpi):
+def picture(path, probes, histories, names, report, p0, dpi, free):
+    """q/p above; below p/p0, or with a free volume (p held at the grains') the volumetric
+    strain."""
     fig, axes = figures.subplots(2, len(names), figsize=(3.6 * len(names), 6.0),
                                  squeeze=False)
     for j, name in enumerate(names):
@@ -213,15 +242,16 @@ def picture(path, probes, histories, names, report, p0, dpi):
         g = {k: v[:rows] for k, v in probes[name].items()}
         s = g["s_over_B"]
         axes[0][j].plot(s, ratio(g["p"], g["q"]), "k-", lw=1.6, label="grains")
-        axes[1][j].plot(s, g["p"] / p0, "k-", lw=1.6, label="grains")
+        axes[1][j].plot(s, volumetric(g) if free else g["p"] / p0, "k-", lw=1.6, label="grains")
         for seed, h in histories[name].items():
             n = min(rows, len(h["p"]))
             axes[0][j].plot(s[:n], ratio(h["p"][:n], h["q"][:n]), lw=0.9, label=f"RVE {seed}")
-            axes[1][j].plot(s[:n], h["p"][:n] / p0, lw=0.9, label=f"RVE {seed}")
+            axes[1][j].plot(s[:n], h["e_vol"][:n] if free else h["p"][:n] / p0, lw=0.9,
+                            label=f"RVE {seed}")
         axes[0][j].set_title(name, fontsize=10)
         axes[1][j].set_xlabel("s / B")
     axes[0][0].set_ylabel("q / p")
-    axes[1][0].set_ylabel("p / p0")
+    axes[1][0].set_ylabel("volumetric strain" if free else "p / p0")
     axes[0][0].legend(fontsize=7)
     figures.save(fig, path, dpi)
 
