@@ -4,7 +4,8 @@
 usage: check_replay_direct_dem.py WORK RUN MPM_LIG
   RUN: a direct-DEM run of tests/tools/direct_dem_tiny.json with --probes (direct_dem_real's)
 
-- bad input: exit 2, named, on one line, the output folder not created;
+- bad input: exit 2, named, on one line, the output folder not created (a torn window,
+  det F <= 0, and for a free volume a window without compression among them);
 - a replay of the probe "far" on one RVE: exit 0, one RVE history row per probe row, and the
   RVE's Hencky strain at every row equal to 1/2 ln(F F^T) of the probe's F (the path reached
   the RVE as the grains went through it), replay.json and replay.png written;
@@ -36,6 +37,23 @@ def hencky_left(F):
     return vectors @ np.diag(0.5 * np.log(values)) @ vectors.T
 
 
+def damaged(work, run, column, value):
+    """A copy of RUN whose probe far has `value` in `column` at its third row."""
+    copy = os.path.join(work, f"damaged_{column}")
+    os.makedirs(copy)
+    shutil.copy(os.path.join(run, "summary.json"), copy)
+    with open(os.path.join(run, "probes.csv")) as f:
+        lines = f.read().splitlines()
+    header = lines[0].split(",")
+    far = [k for k, line in enumerate(lines) if line.startswith("far,")]
+    row = lines[far[2]].split(",")
+    row[header.index(column)] = repr(value)
+    lines[far[2]] = ",".join(row)
+    with open(os.path.join(copy, "probes.csv"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return copy
+
+
 def main():
     work, run, mpm_lig = sys.argv[1:4]
     shutil.rmtree(work, ignore_errors=True)
@@ -54,6 +72,10 @@ def main():
         ("a seed given twice", [TINY, run, "--seeds", "3", "3", "--mpm-lig", mpm_lig],
          "--seeds"),
         ("a negative --at", [TINY, run, "--at", "-0.1", "--mpm-lig", mpm_lig], "--at"),
+        ("a torn window", [TINY, damaged(work, run, "F22", -0.5), "--mpm-lig", mpm_lig],
+         "probe far: det F <= 0"),
+        ("no compression, free volume", [TINY, damaged(work, run, "p", -1.0), "--mpm-lig",
+                                         mpm_lig, "--volume", "free"], "probe far: p <= 0"),
     ]
     for name, args, key in cases:
         out = full if "not empty" in name else os.path.join(work, "out_" + name.replace(" ", "_"))

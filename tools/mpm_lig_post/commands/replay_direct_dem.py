@@ -52,6 +52,25 @@ def write_path(path, table, rows, free_volume):
             f.write(",".join("%.17g" % table[c][k] for c in columns) + "\n")
 
 
+def path_rows(name, table, upto, free_volume):
+    """The probe's rows to replay (to --upto), checked before anything is written: a window
+    its grains have torn (det F <= 0) or, for a free volume, one that carries no compression
+    cannot be replayed."""
+    rows = len(table["time"]) if upto is None else \
+        int(np.count_nonzero(table["s_over_B"] <= upto + 1e-9))
+    rows = max(rows, 2)
+    det = table["F11"][:rows] * table["F22"][:rows] - table["F12"][:rows] * table["F21"][:rows]
+    bad = [(det, "det F <= 0: its grains no longer hold together")]
+    if free_volume:
+        bad.append((table["p"][:rows], "p <= 0: its grains carry no compression"))
+    for values, why in bad:
+        if not np.all(values > 0):
+            at = table["s_over_B"][int(np.argmax(~(values > 0)))]
+            raise InputError(f"probe {name}: {why} at s/B {at:.3f}; replay it to a smaller "
+                             "--upto")
+    return rows
+
+
 def element_case(rve, seed, path_csv, title, free_volume):
     node = copy.deepcopy(rve)
     node["seed"] = seed
@@ -167,6 +186,7 @@ def main():
     seeds = a.seeds or [int(rve.get("seed", 1)) + k for k in range(3)]
     if len(set(seeds)) != len(seeds):
         raise InputError("--seeds: a seed given twice")
+    rows_of = {name: path_rows(name, probes[name], a.upto, free) for name in names}
     out = os.path.abspath(a.output)
     cli.writable_folder(out)
     if os.path.isdir(out) and os.listdir(out):
@@ -177,16 +197,9 @@ def main():
               "probes": {}}
     histories = {}
     for name in names:
-        table = probes[name]
-        rows = len(table["time"]) if a.upto is None else \
-            int(np.count_nonzero(table["s_over_B"] <= a.upto + 1e-9))
-        rows = max(rows, 2)
+        table, rows = probes[name], rows_of[name]
         grains = {k: v[:rows] for k, v in table.items()}
         path_csv = os.path.join(out, "paths", f"{name}.csv")
-        if free and not np.all(table["p"][:rows] > 0):
-            raise InputError(f"--volume free: probe {name}'s grains carry no compression at "
-                             f"s/B {table['s_over_B'][int(np.argmin(table['p'][:rows]))]:.3f} "
-                             "(p <= 0): replay it to a smaller --upto")
         write_path(path_csv, table, rows, free)
         histories[name] = {}
         for seed in seeds:
