@@ -183,16 +183,11 @@ class RecordedStrainPath : public StrainPath {
 //! stretch; corrections within the increment then stretch the cell isotropically until its mean
 //! stress is the recorded row's. As the drained test's servo (strain_path.cpp): the prediction
 //! learns the steady dilatancy from the error each increment's own step left, and the
-//! stiffness is re-estimated from each correction's response, separately for expanding and
-//! contracting, within [1/50, 4] times the first estimate.
+//! stiffness is re-estimated from each correction's response (ServoStiffness).
 class FreeVolumePath : public StrainPath {
  public:
   FreeVolumePath(std::shared_ptr<const RecordedPath> path, int dimension, double stiffness)
-      : path_(std::move(path)),
-        axes_(dimension),
-        first_stiffness_(stiffness),
-        expanding_(stiffness),
-        contracting_(stiffness) {}
+      : path_(std::move(path)), axes_(dimension), stiffness_(stiffness) {}
   int increments() const override { return static_cast<int>(path_->intervals()); }
   int substeps(int k) const override { return path_->substeps[k]; }
   Mat3 start() const override { return path_->F.front(); }
@@ -229,7 +224,7 @@ class FreeVolumePath : public StrainPath {
   }
   //! Mean stress above the target (> 0: the cell must expand).
   double excess(const Mat3& stress) const { return mean(stress) - target_; }
-  double& stiffness(double expand) { return expand > 0.0 ? expanding_ : contracting_; }
+  double& stiffness(double expand) { return stiffness_(expand); }
   //! Equal log stretch `e` of every axis (in the plane for a 2D RVE).
   Mat3 isotropic(double e) const {
     Mat3 dF = Mat3::Identity();
@@ -239,20 +234,15 @@ class FreeVolumePath : public StrainPath {
   }
   void update_stiffness(const Mat3& stress) {
     const double response = before_ - mean(stress);  // the fall of the mean stress
-    if (!(applied_ != 0.0) || !(response / applied_ > 0.0))
-      return;
-    double& k = stiffness(applied_);
-    k = std::clamp(std::sqrt(k * response / applied_), first_stiffness_ / 50.0,
-                   4.0 * first_stiffness_);
+    stiffness_.update(response * applied_, applied_ * applied_, applied_);
   }
 
   std::shared_ptr<const RecordedPath> path_;
   int axes_;
-  double first_stiffness_;
-  double expanding_, contracting_;  //!< stiffness estimates [Pa per unit per-axis strain]
-  double target_ = 0.0;             //!< the mean stress of the increment's end row
-  double trend_ = 0.0;              //!< predicted per-axis log strain per increment
-  double after_step_ = 0.0;         //!< mean-stress error the last step left [Pa]
+  ServoStiffness stiffness_;  //!< per unit per-axis log strain
+  double target_ = 0.0;       //!< the mean stress of the increment's end row
+  double trend_ = 0.0;        //!< predicted per-axis log strain per increment
+  double after_step_ = 0.0;   //!< mean-stress error the last step left [Pa]
   static constexpr double kTrendGain = 0.5;
   double applied_ = 0.0;  //!< per-axis log strain of the last correction
   double before_ = 0.0;   //!< mean stress before it

@@ -48,9 +48,7 @@ class DrainedPath : public StrainPath {
         lateral_axes_(dimension - 1),
         confining_(confining),
         tolerance_(t.confining_tolerance * confining),
-        probe_stiffness_(stiffness),
-        widening_(stiffness),
-        narrowing_(stiffness) {}
+        stiffness_(stiffness) {}
   int increments() const override { return n_; }
 
   Mat3 increment(int k, const Mat3& stress) override {
@@ -91,11 +89,9 @@ class DrainedPath : public StrainPath {
   double excess(const Mat3& stress, int i) const { return -stress(i, i) - confining_; }
 
   //! The stiffness estimate for a lateral strain of the sign of `widen` (> 0: widening).
-  double& stiffness(double widen) { return widen > 0.0 ? widening_ : narrowing_; }
+  double& stiffness(double widen) { return stiffness_(widen); }
 
-  //! Secant stiffness of the last correction (-Δσ'/Δε, least squares over the lateral axes),
-  //! averaged geometrically with the previous estimate of its direction and kept within
-  //! [1/50, 4] times the probe's, so that the noise of a small packing cannot run it away.
+  //! Secant stiffness of the last correction (-Δσ'/Δε, least squares over the lateral axes).
   void update_stiffness(const Mat3& stress) {
     double num = 0.0, den = 0.0, sum = 0.0;
     for (int i = 0; i < lateral_axes_; ++i) {
@@ -103,10 +99,7 @@ class DrainedPath : public StrainPath {
       den += applied_[i] * applied_[i];
       sum += applied_[i];
     }
-    if (!(den > 0.0) || !(num > 0.0))
-      return;
-    double& k = stiffness(sum);
-    k = std::clamp(std::sqrt(k * num / den), probe_stiffness_ / 50.0, 4.0 * probe_stiffness_);
+    stiffness_.update(num, den, sum);
   }
 
   int n_;
@@ -114,8 +107,7 @@ class DrainedPath : public StrainPath {
   int lateral_axes_;
   double confining_;
   double tolerance_;
-  double probe_stiffness_;
-  double widening_, narrowing_;        //!< lateral stiffness estimates [Pa] per direction
+  ServoStiffness stiffness_;           //!< lateral stiffness estimates per direction
   double trend_[2] = {0.0, 0.0};       //!< predicted lateral log strain per increment step
   double after_step_[2] = {0.0, 0.0};  //!< lateral stress error the last step left [Pa]
   static constexpr double kTrendGain = 0.5;
@@ -147,6 +139,13 @@ class CyclicSimpleShearPath : public StrainPath {
 };
 
 }  // namespace
+
+void ServoStiffness::update(double num, double den, double direction) {
+  if (!(den > 0.0) || !(num > 0.0))
+    return;
+  double& k = (*this)(direction);
+  k = std::clamp(std::sqrt(k * num / den), first_ / 50.0, 4.0 * first_);
+}
 
 std::unique_ptr<StrainPath> make_strain_path(const ElementTestSpec& test, int dimension,
                                              double confining_pressure, double lateral_stiffness) {

@@ -28,6 +28,26 @@ class StrainPath {
   virtual Mat3 start() const { return Mat3::Identity(); }
 };
 
+//! A servo's stiffness estimates [Pa per unit log strain], one for expanding and one for
+//! contracting corrections (a packing unloading towards failure is soft, reloading stiff),
+//! each re-estimated from a correction's secant response, averaged geometrically with the
+//! previous estimate and kept within [1/50, 4] times the first, so that the noise of a small
+//! packing cannot run it away. Shared by the drained test's lateral servo and the mean-stress
+//! servo of a recorded path with a free volume.
+class ServoStiffness {
+ public:
+  explicit ServoStiffness(double first) : first_(first), expanding_(first), contracting_(first) {}
+  //! The estimate for a strain of the sign of `expand` (> 0: expanding).
+  double& operator()(double expand) { return expand > 0.0 ? expanding_ : contracting_; }
+  //! After a correction: `num` = Σ −Δσ'ᵢ Δεᵢ, `den` = Σ Δεᵢ² (least squares over the
+  //! corrected axes), `direction` = Σ Δεᵢ; no update unless both are > 0.
+  void update(double num, double den, double direction);
+
+ private:
+  double first_;
+  double expanding_, contracting_;
+};
+
 //! The path of `test` for an RVE of `dimension`; `lateral_stiffness` [Pa per unit strain] is
 //! the servo's first estimate of the packing's stiffness (drained tests, recorded paths with a
 //! free volume). A recorded path comes from recorded_path.h.

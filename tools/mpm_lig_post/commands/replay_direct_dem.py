@@ -59,8 +59,8 @@ def path_rows(name, table, upto, free_volume):
     rows = len(table["time"]) if upto is None else \
         int(np.count_nonzero(table["s_over_B"] <= upto + 1e-9))
     rows = max(rows, 2)
-    det = table["F11"][:rows] * table["F22"][:rows] - table["F12"][:rows] * table["F21"][:rows]
-    bad = [(det, "det F <= 0: its grains no longer hold together")]
+    bad = [(window_det({k: v[:rows] for k, v in table.items()}),
+            "det F <= 0: its grains no longer hold together")]
     if free_volume:
         bad.append((table["p"][:rows], "p <= 0: its grains carry no compression"))
     for values, why in bad:
@@ -93,9 +93,14 @@ def ratio(p, q):
     return np.where(p > 0, q / np.maximum(p, 1e-300), np.nan)
 
 
+def window_det(grains):
+    """det F of the grains' window, row by row."""
+    return grains["F11"] * grains["F22"] - grains["F12"] * grains["F21"]
+
+
 def volumetric(grains):
     """The grains' volumetric log strain, ln det F of their window."""
-    return np.log(grains["F11"] * grains["F22"] - grains["F12"] * grains["F21"])
+    return np.log(window_det(grains))
 
 
 def states_at(grains, rves, p0, at):

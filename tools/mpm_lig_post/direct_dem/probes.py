@@ -96,8 +96,8 @@ def parse(names):
 
 def check_probes(pb, a):
     """The probes' names and windows, before anything runs: InputError naming the option."""
-    for name, _, _, own in parse(a.probes):
-        side = own * pb["d"] if own else window_side(pb, a)
+    lx, ly = pb["box"][0], pb["box"][1]
+    for name, (_, side) in windows(pb, parse(a.probes), window_side(pb, a), lx, ly).items():
         if side > min(pb["box"]):
             raise InputError(f"--probes {name}: the window ({side:.3g} m, {side / pb['d']:.3g} "
                              f"d) is wider than the block ({min(pb['box']):.3g} m): choose a "
