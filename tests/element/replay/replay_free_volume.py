@@ -3,8 +3,8 @@
 
 usage: replay_free_volume.py MPM_LIG BIAXIAL_CASE WORK_DIR
 
-The drained biaxial test (BIAXIAL_CASE, a small dense 2D packing, taken to 8 % axial strain
-in steps of 0.1 %, past its contraction into its dilation) runs first. Its path is then
+The drained biaxial test (BIAXIAL_CASE, a small 2D packing, taken to 8 % axial strain in steps
+of 0.1 %, over which its volume changes by several 1e-3) runs first. Its path is then
 written as a recorded path with the volume taken out (F = diag(e^(e_xx - v/2), e^(e_yy - v/2)),
 v = e_xx + e_yy: det F = 1 on every row) and the test's own mean stress as the column p, and
 replayed on the same packing (its prepared.restart) twice:
