@@ -1,7 +1,7 @@
 // Fixed cost of one RVE update next to its DEM stepping (a benchmark tool, never a test).
 //
 // usage: bench_rve_update CASE.json [--grains N] [--updates M] [--substeps 1,20,100]
-//                         [--repeats R] [--cpu-time] [--json FILE]
+//                         [--setup-every 1,20] [--repeats R] [--cpu-time] [--json FILE]
 //
 // Prepares the packing of CASE.json's "rve" node once (with N grains if given), then, R times and
 // alternately for every sub-step count n, clones it and times M updates of a small simple shear
@@ -11,6 +11,8 @@
 // A straight line through seconds per update against n gives the fixed cost per update
 // (intercept) and the cost per DEM step (slope). Prints a table (medians of R) and writes it as
 // JSON. --cpu-time times the process's CPU time instead of the wall clock (on a loaded machine).
+// --setup-every K1,K2,...: the RVE's `setup_every` (the engine's full set-up before one update
+// in K, the others continuing its run), each timed in turn within every repeat: side by side.
 #include <mpi.h>
 
 #include <algorithm>
@@ -44,7 +46,16 @@ struct Options {
   int updates = 200, repeats = 3;
   bool cpu_time = false;
   std::vector<int> substeps = {1, 20, 100};
+  std::vector<int> setup_every = {1};
 };
+
+std::vector<int> int_list(const std::string& text) {
+  std::vector<int> values;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');)
+    values.push_back(std::stoi(item));
+  return values;
+}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -65,20 +76,21 @@ Options parse(int argc, char** argv) {
       o.cpu_time = true;
     else if (a == "--json")
       o.json_file = value();
-    else if (a == "--substeps") {
-      o.substeps.clear();
-      std::stringstream list(value());
-      for (std::string item; std::getline(list, item, ',');)
-        o.substeps.push_back(std::stoi(item));
-    } else if (o.case_file.empty() && a.rfind("--", 0) != 0)
+    else if (a == "--substeps")
+      o.substeps = int_list(value());
+    else if (a == "--setup-every")
+      o.setup_every = int_list(value());
+    else if (o.case_file.empty() && a.rfind("--", 0) != 0)
       o.case_file = a;
     else
       throw std::invalid_argument("unknown argument '" + a + "'");
   }
-  if (o.case_file.empty() || o.substeps.size() < 2 || o.updates < 1 || o.repeats < 1)
+  const bool setup_ok =
+      !o.setup_every.empty() && *std::min_element(o.setup_every.begin(), o.setup_every.end()) >= 1;
+  if (o.case_file.empty() || o.substeps.size() < 2 || o.updates < 1 || o.repeats < 1 || !setup_ok)
     throw std::invalid_argument(
         "usage: bench_rve_update CASE.json [--grains N] [--updates M] "
-        "[--substeps 1,20,100] [--repeats R] [--cpu-time] [--json FILE]");
+        "[--substeps 1,20,100] [--setup-every 1,20] [--repeats R] [--cpu-time] [--json FILE]");
   return o;
 }
 
@@ -107,7 +119,10 @@ double time_updates(const rve::RveSpec& spec, const std::string& packing, int n,
   dF(0, 1) = 1e-5 * n;  // the same shear rate per DEM step for every n
   const double start = now_seconds(cpu_time);
   for (int k = 0; k < updates; ++k) {
-    r->deform(dF, n);
+    if (k % spec.setup_every == 0)
+      r->require_setup();
+    r->deform(dF, n,
+              spec.setup_every > 1 ? rve::Rve::EngineRun::continued : rve::Rve::EngineRun::set_up);
     if (look == Look::health)
       r->check_blow_up(r->observe_health());
     else if (look == Look::full)
@@ -128,6 +143,48 @@ std::pair<double, double> line(const std::vector<double>& x, const std::vector<d
   }
   const double b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   return {(sy - b * sx) / n, b};
+}
+
+//! Prints the table of one `setup_every` and returns it as JSON.
+nlohmann::json report(const rve::RveSpec& spec, const Options& o, int setup_every,
+                      const std::vector<double>& x, const std::vector<double>& deform_only,
+                      const std::vector<double>& with_observe,
+                      const std::vector<double>& with_full) {
+  const auto [fixed_deform, per_step] = line(x, deform_only);
+  const auto [fixed_total, per_step_total] = line(x, with_observe);
+  const auto [fixed_full, per_step_full] = line(x, with_full);
+  std::printf("%ld grains, setup_every %d, %d updates x %d repeats (medians, %s)\n", spec.grains,
+              setup_every, o.updates, o.repeats, o.cpu_time ? "CPU time" : "wall clock");
+  std::printf("%9s %10s %12s %12s %13s %13s\n", "substeps", "deform ms", "+ health ms", "+ full ms",
+              "fixed share", "(full look)");
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double share = fixed_total / with_observe[i], share_full = fixed_full / with_full[i];
+    std::printf("%9.0f %10.3f %12.3f %12.3f %12.1f%% %12.1f%%\n", x[i], 1e3 * deform_only[i],
+                1e3 * with_observe[i], 1e3 * with_full[i], 100 * share, 100 * share_full);
+    rows.push_back({{"substeps", x[i]},
+                    {"deform_seconds", deform_only[i]},
+                    {"update_seconds", with_observe[i]},
+                    {"full_observe_update_seconds", with_full[i]},
+                    {"fixed_share", share},
+                    {"fixed_share_full_observe", share_full}});
+  }
+  std::printf(
+      "fixed cost per update: deform %.3f ms, observe_health %.3f ms (observe %.3f ms); "
+      "per DEM step %.4f ms (%.3g particle-steps/s)\n",
+      1e3 * fixed_deform, 1e3 * (fixed_total - fixed_deform), 1e3 * (fixed_full - fixed_deform),
+      1e3 * per_step, spec.grains / per_step);
+  return {{"grains", spec.grains},
+          {"setup_every", setup_every},
+          {"updates", o.updates},
+          {"repeats", o.repeats},
+          {"rows", rows},
+          {"fixed_deform_seconds", fixed_deform},
+          {"clock", o.cpu_time ? "cpu" : "wall"},
+          {"fixed_observe_seconds", fixed_total - fixed_deform},
+          {"fixed_full_observe_seconds", fixed_full - fixed_deform},
+          {"seconds_per_dem_step", per_step},
+          {"seconds_per_dem_step_with_observe", per_step_total}};
 }
 
 }  // namespace
@@ -157,58 +214,39 @@ int main(int argc, char** argv) {
     rve::consolidate(*prepared);
     prepared->write_restart(packing);
   }
-  nlohmann::json rows = nlohmann::json::array();
-  std::vector<double> x, deform_only, with_observe, with_full;
+  struct Series {
+    std::vector<double> deform_only, with_observe, with_full;
+  };
+  std::vector<Series> series(o.setup_every.size());
   for (const int n : o.substeps) {
-    std::vector<double> a, b, c;
+    std::vector<std::vector<double>> a(series.size()), b(series.size()), c(series.size());
     for (int k = 0; k < o.repeats; ++k) {
-      a.push_back(time_updates(spec, packing, n, o.updates, Look::none, o.cpu_time));
-      b.push_back(time_updates(spec, packing, n, o.updates, Look::health, o.cpu_time));
-      c.push_back(time_updates(spec, packing, n, o.updates, Look::full, o.cpu_time));
+      for (std::size_t m = 0; m < series.size(); ++m) {
+        rve::RveSpec timed = spec;
+        timed.setup_every = o.setup_every[m];
+        a[m].push_back(time_updates(timed, packing, n, o.updates, Look::none, o.cpu_time));
+        b[m].push_back(time_updates(timed, packing, n, o.updates, Look::health, o.cpu_time));
+        c[m].push_back(time_updates(timed, packing, n, o.updates, Look::full, o.cpu_time));
+      }
     }
-    x.push_back(n);
-    deform_only.push_back(median(a));
-    with_observe.push_back(median(b));
-    with_full.push_back(median(c));
+    for (std::size_t m = 0; m < series.size(); ++m) {
+      series[m].deform_only.push_back(median(a[m]));
+      series[m].with_observe.push_back(median(b[m]));
+      series[m].with_full.push_back(median(c[m]));
+    }
   }
   std::filesystem::remove(packing);
-  const auto [fixed_deform, per_step] = line(x, deform_only);
-  const auto [fixed_total, per_step_total] = line(x, with_observe);
-  const auto [fixed_full, per_step_full] = line(x, with_full);
-  std::printf("%ld grains, %d updates x %d repeats (medians, %s)\n", spec.grains, o.updates,
-              o.repeats, o.cpu_time ? "CPU time" : "wall clock");
-  std::printf("%9s %10s %12s %12s %13s %13s\n", "substeps", "deform ms", "+ health ms", "+ full ms",
-              "fixed share", "(full look)");
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double share = fixed_total / with_observe[i], share_full = fixed_full / with_full[i];
-    std::printf("%9.0f %10.3f %12.3f %12.3f %12.1f%% %12.1f%%\n", x[i], 1e3 * deform_only[i],
-                1e3 * with_observe[i], 1e3 * with_full[i], 100 * share, 100 * share_full);
-    rows.push_back({{"substeps", x[i]},
-                    {"deform_seconds", deform_only[i]},
-                    {"update_seconds", with_observe[i]},
-                    {"full_observe_update_seconds", with_full[i]},
-                    {"fixed_share", share},
-                    {"fixed_share_full_observe", share_full}});
-  }
-  std::printf(
-      "fixed cost per update: deform %.3f ms, observe_health %.3f ms (observe %.3f ms); "
-      "per DEM step %.4f ms (%.3g particle-steps/s)\n",
-      1e3 * fixed_deform, 1e3 * (fixed_total - fixed_deform), 1e3 * (fixed_full - fixed_deform),
-      1e3 * per_step, spec.grains / per_step);
+  const std::vector<double> x(o.substeps.begin(), o.substeps.end());
+  nlohmann::json tables = nlohmann::json::array();
+  for (std::size_t m = 0; m < series.size(); ++m)
+    tables.push_back(report(spec, o, o.setup_every[m], x, series[m].deform_only,
+                            series[m].with_observe, series[m].with_full));
   if (!o.json_file.empty()) {
+    nlohmann::json out_json = tables.front();
+    if (tables.size() > 1)
+      out_json = nlohmann::json{{"grains", spec.grains}, {"tables", tables}};
     std::ofstream out(o.json_file);
-    out << nlohmann::json{{"grains", spec.grains},
-                          {"updates", o.updates},
-                          {"repeats", o.repeats},
-                          {"rows", rows},
-                          {"fixed_deform_seconds", fixed_deform},
-                          {"clock", o.cpu_time ? "cpu" : "wall"},
-                          {"fixed_observe_seconds", fixed_total - fixed_deform},
-                          {"fixed_full_observe_seconds", fixed_full - fixed_deform},
-                          {"seconds_per_dem_step", per_step},
-                          {"seconds_per_dem_step_with_observe", per_step_total}}
-               .dump(1)
-        << "\n";
+    out << out_json.dump(1) << "\n";
   }
   return 0;
 }

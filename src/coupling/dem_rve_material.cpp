@@ -173,9 +173,17 @@ void DemRveMaterial::update(const materials::MaterialStep& step, std::vector<Mat
   const std::vector<Mat3> before = results_.stress;
   const std::vector<double> predicted =
       schedule_.predict_steps(batch, results_.dem_pressure, results_.net_shear);
-  rebalance(predicted, batch);
+  // rve.setup_every: every RVE sets up at the first update of each period, and only there may
+  // RVEs move between ranks (a moved RVE's engine is new and must set up): which RVE moved,
+  // and when, then changes no result.
+  const bool period_start = (updates_ - 1) % spec_.setup_every == 0;
+  if (period_start)
+    rebalance(predicted, batch);
+  const auto run =
+      spec_.setup_every > 1 ? rve::Rve::EngineRun::continued : rve::Rve::EngineRun::set_up;
   const double start = MPI_Wtime();
-  const std::vector<double> owned = rves_->deform(batch, results_.stress, updates_);
+  const std::vector<double> owned =
+      rves_->deform(batch, results_.stress, updates_, run, period_start);
   const double computed = MPI_Wtime();
   const std::vector<double> seconds =
       gather_results(rves_->layout(), owned, batch, spec_.dimension, results_);

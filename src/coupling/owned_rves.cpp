@@ -62,10 +62,12 @@ void OwnedRves::inject_fault_if_asked(std::size_t point, rve::Rve& rve, long upd
 }
 
 std::vector<double> OwnedRves::deform(const DemBatch& batch, const std::vector<Mat3>& stress,
-                                      long update) {
+                                      long update, rve::Rve::EngineRun run, bool set_up) {
   std::vector<double> rows;
   for (const std::size_t p : layout_->owned()) {
     rve::Rve& rve = *rves_[p];
+    if (set_up)
+      rve.require_setup();
     Mat3 sigma = stress[p];
     double steps = 0.0;
     const double start = MPI_Wtime();
@@ -73,7 +75,7 @@ std::vector<double> OwnedRves::deform(const DemBatch& batch, const std::vector<M
       inject_fault_if_asked(p, rve, update);
       // One rank's failure must end the whole job: the others are about to wait for it.
       try {
-        steps = rve.deform(batch.increment(p));
+        steps = rve.deform(batch.increment(p), 0, run);
         // The contact forces are not needed here: what the blow-up check reads comes from
         // the overlaps (docs/hpc.md, the per-update fixed cost).
         const rve::Observables now = rve.observe_health();

@@ -52,8 +52,10 @@ class OwnedRves {
 
   //! Collective over each group: the owned RVEs that run in `batch` deformed by their
   //! increments at MPM update `update`; per owned point its row (point_results.h): the new
-  //! stress (its `stress` entry when it ran none), DEM steps and seconds.
-  std::vector<double> deform(const DemBatch& batch, const std::vector<Mat3>& stress, long update);
+  //! stress (its `stress` entry when it ran none), DEM steps and seconds. `run`: how each runs
+  //! its engine; `set_up`: every owned RVE (running now or not) sets up at its next update.
+  std::vector<double> deform(const DemBatch& batch, const std::vector<Mat3>& stress, long update,
+                             rve::Rve::EngineRun run, bool set_up);
   //! Collective: every point to group `owners[point]`. A moving RVE goes through its checkpoint
   //! files and its Rve::State; the new owner continues it bit-identically.
   void migrate(const std::vector<int>& owners);

@@ -130,6 +130,15 @@ std::vector<Overlap> GuardedEngine::overlaps() {
   return impl_->overlaps();
 }
 
+bool GuardedEngine::can_continue_runs() const {
+  return impl_->can_continue_runs();
+}
+
+void GuardedEngine::run_continued(const std::string& deform_fix, int steps) {
+  Scope scope(this);
+  impl_->run_continued(deform_fix, steps);
+}
+
 long GuardedEngine::ghost_count() const {
   Scope scope(this);
   return impl_->ghost_count();

@@ -38,6 +38,8 @@ class GuardedEngine final : public Engine {
   std::vector<Contact> contacts() override;
   std::vector<Overlap> overlaps() override;
   std::string recent_output() const override;
+  bool can_continue_runs() const override;
+  void run_continued(const std::string& deform_fix, int steps) override;
 
   //! Ghost atoms on this rank (tests: health of periodic boxes).
   long ghost_count() const;

@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "atom.h"
 #include "compute.h"
 #include "domain.h"
+#include "fix.h"
 #include "force.h"
 #include "lammps.h"
 #include "library.h"
@@ -59,6 +61,8 @@ class LiggghtsEngine final : public LibraryEngine {
 
   std::vector<Contact> contacts() override;
   std::vector<Overlap> overlaps() override;
+  bool can_continue_runs() const override { return true; }
+  void run_continued(const std::string& deform_fix, int steps) override;
 
  private:
   // LIGGGHTS 3.8's Domain constructor leaves prd_lamda and prd_half_lamda at 0 (LAMMPS sets
@@ -114,6 +118,29 @@ std::vector<Contact> LiggghtsEngine::contacts() {
     c.branch = minimum_image(x[c.id_j - 1] - x[c.id_i - 1], h);
   }
   return result;
+}
+
+// `run N pre no` skips LAMMPS::init, so a fix added since the last set-up is in none of the
+// engine's per-step lists, and an existing fix deform keeps the start and end boxes its last
+// init() computed (docs/DESIGN.md §3.3). A fix given again under its own ID is built anew in
+// the same slot of the fix list (Modify::add_fix), which the per-step lists index, and its
+// init() reads the run's first and last step: those are set here as the run command will set
+// them, and the fix's init() alone is called.
+void LiggghtsEngine::run_continued(const std::string& deform_fix, int steps) {
+  std::istringstream words(deform_fix);
+  std::string keyword, id;
+  words >> keyword >> id;
+  LAMMPS_NS::Modify& modify = *lmp_->modify;
+  const int slot = keyword == "fix" ? modify.find_fix(id.c_str()) : -1;
+  if (slot < 0 || std::string(modify.fix[slot]->style) != "deform")
+    throw std::logic_error("liggghts run_continued: no fix deform '" + id + "' to continue");
+  command(deform_fix);
+  LAMMPS_NS::Update& update = *lmp_->update;
+  update.firststep = update.beginstep = update.ntimestep;
+  update.laststep = update.endstep = update.ntimestep + steps;
+  modify.fix[slot]->init();
+  update.firststep = update.beginstep = update.laststep = update.endstep = 0;
+  command("run " + std::to_string(steps) + " pre no post no");
 }
 
 std::vector<Overlap> LiggghtsEngine::overlaps() {

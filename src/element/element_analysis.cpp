@@ -323,9 +323,15 @@ void ElementTest::stop_if_asked(const RunContext& context, int k, int n, int wri
 //! Increment `k` of the path and its corrections; returns the DEM sub-steps it took.
 int ElementTest::apply_increment(rve::Rve& rve, StrainPath& path, int k, Loading& state) const {
   const Mat3 dF = path.increment(k, state.now.stress);
+  // rve.setup_every: the engine's set-up before one increment in setup_every (with its
+  // corrections), the others continue its run.
+  const auto run =
+      rve_.setup_every > 1 ? rve::Rve::EngineRun::continued : rve::Rve::EngineRun::set_up;
+  if (k % rve_.setup_every == 0)
+    rve.require_setup();
   // A recorded path's increment runs the sub-steps its file gives, else (0) the RVE's rule:
   // the rule the coupling applies to an MPM point's update.
-  int substeps = rve.deform(dF, path.substeps(k));
+  int substeps = rve.deform(dF, path.substeps(k), run);
   state.F = dF * state.F;
   // Stress-controlled directions: correct within the increment until on target. Each
   // correction takes the sub-steps the RVE's rule gives for its strain (the same inertial
@@ -337,7 +343,7 @@ int ElementTest::apply_increment(rve::Rve& rve, StrainPath& path, int k, Loading
   for (std::optional<Mat3> c;
        corrections < test_.max_corrections && (c = path.correction(stress)).has_value();
        ++corrections) {
-    substeps += rve.deform(*c);
+    substeps += rve.deform(*c, 0, run);
     state.F = *c * state.F;
     stress = rve.stress();
   }

@@ -93,6 +93,11 @@ class Material {
   //! Whether write_checkpoint() saves everything a point's future depends on. By default that
   //! holds when the stress is the whole state (no state_names()).
   virtual bool checkpointable() const { return state_names().empty(); }
+  //! Whether a checkpoint written now resumes bit-identically. A material that carries more
+  //! between two updates than its checkpoint holds (a DEM material continuing its engines' runs
+  //! between set-ups) says no until it is back at a set-up; the run then writes its checkpoint
+  //! at the first step where every material says yes.
+  virtual bool at_exact_checkpoint() const { return true; }
   //! Restore state variable `k` of `point` (used by the default restore_checkpoint()).
   virtual void set_state(std::size_t /*point*/, std::size_t /*k*/, double /*value*/) {
     throw std::logic_error(type() + ": set_state() on a material without restorable state");

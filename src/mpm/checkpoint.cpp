@@ -222,6 +222,14 @@ std::string checkpoint_obstacle(const Solver<D>& solver) {
 }
 
 template <int D>
+bool at_exact_checkpoint(const Solver<D>& solver) {
+  for (std::size_t k = 0; k < solver.materials().size(); ++k)
+    if (!solver.materials()[k]->at_exact_checkpoint())
+      return false;
+  return true;
+}
+
+template <int D>
 void write_checkpoint(const MpmCase& c, Solver<D>& solver, const RecorderState& recorder,
                       const std::string& run_dir, MPI_Comm comm) {
   int rank = 0;
@@ -310,5 +318,7 @@ template RecorderState read_checkpoint<2>(const MpmCase&, Solver<2>&, const std:
 template RecorderState read_checkpoint<3>(const MpmCase&, Solver<3>&, const std::string&, MPI_Comm);
 template std::string checkpoint_obstacle<2>(const Solver<2>&);
 template std::string checkpoint_obstacle<3>(const Solver<3>&);
+template bool at_exact_checkpoint<2>(const Solver<2>&);
+template bool at_exact_checkpoint<3>(const Solver<3>&);
 
 }  // namespace mpm_lig::mpm

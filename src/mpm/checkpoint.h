@@ -47,4 +47,9 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
 template <int D>
 std::string checkpoint_obstacle(const Solver<D>& solver);
 
+//! Whether a checkpoint written now resumes bit-identically (Material::at_exact_checkpoint of
+//! every material).
+template <int D>
+bool at_exact_checkpoint(const Solver<D>& solver);
+
 }  // namespace mpm_lig::mpm

@@ -181,16 +181,39 @@ struct StageOutputs {
   }
 };
 
+//! A checkpoint or a stop waiting for a step where the materials can be resumed exactly
+//! (Material::at_exact_checkpoint).
+struct DeferredCheckpoint {
+  bool due = false;
+  bool stop_announced = false;
+};
+
 //! After a main-stage step of a run with checkpoints: writes one when due or when a stop
 //! signal arrived (and the materials allow it); true when the run must stop now. A stop after
-//! the last step is not honoured: the run is complete, nothing to resume.
+//! the last step is not honoured: the run is complete, nothing to resume. Where the materials
+//! cannot be resumed exactly after this step, both wait for the first step where they can.
 template <int D>
 bool checkpoint_or_stop(const MpmCase& c, Solver<D>& solver, const Recorder<D>* recorder,
-                        const RunOptions& options, long total, const std::string& obstacle) {
+                        const RunOptions& options, long total, const std::string& obstacle,
+                        DeferredCheckpoint& deferred) {
   const int rank = rank_of(options.comm);
   const bool stop = stop_requested(options.comm) && solver.steps() < total;
   const bool due =
-      c.checkpoint_every > 0 && solver.steps() % c.checkpoint_every == 0 && solver.steps() < total;
+      (deferred.due || (c.checkpoint_every > 0 && solver.steps() % c.checkpoint_every == 0)) &&
+      solver.steps() < total;
+  if ((stop || due) && obstacle.empty() && !at_exact_checkpoint(solver)) {
+    deferred.due = due;
+    if (stop && !deferred.stop_announced && rank == 0) {
+      std::printf(
+          "stop signal after step %ld: stepping on to where the RVEs set up, to write "
+          "an exact checkpoint\n",
+          solver.steps());
+      std::fflush(stdout);
+    }
+    deferred.stop_announced = deferred.stop_announced || stop;
+    return false;
+  }
+  deferred.due = false;
   if ((stop || due) && obstacle.empty()) {
     const double t0 = MPI_Wtime();
     write_checkpoint<D>(c, solver, recorder ? recorder->state() : RecorderState{}, options.run_dir,
@@ -243,6 +266,7 @@ bool run_case(MpmProblem problem, const RunOptions& options,
   const long total = main_stage_steps(c, solver.dt());
   StageOutputs<D> outputs(c, solver, options, total, resumed);
   const int rank = rank_of(options.comm);
+  DeferredCheckpoint deferred;
   while (solver.steps() < total) {
     solver.step();
     outputs.after_step(solver);
@@ -251,7 +275,7 @@ bool run_case(MpmProblem problem, const RunOptions& options,
     if (!writes_checkpoints(options))
       continue;
     options.hooks.at(TestHooks::Moment::step_recorded, solver.steps(), rank);
-    if (checkpoint_or_stop(c, solver, outputs.recorder.get(), options, total, obstacle))
+    if (checkpoint_or_stop(c, solver, outputs.recorder.get(), options, total, obstacle, deferred))
       return false;
     options.hooks.at(TestHooks::Moment::step_finished, solver.steps(), rank);
   }

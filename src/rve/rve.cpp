@@ -165,6 +165,7 @@ void Rve::check_health(const Observables& now) const {
 }
 
 void Rve::set_friction(double friction) {
+  require_setup();
   engine_->commands(material_input(spec_, friction));
 }
 
@@ -178,6 +179,9 @@ void Rve::write_restart(const std::string& file) {
 }
 
 void Rve::write_checked_restart(const std::string& file) {
+  // write_restart re-initialises the engine and moves atoms between its ranks: what follows
+  // needs a set-up.
+  require_setup();
   engine_->command("write_restart " + dem::quoted_file_name(file));
   // The engine's rank 0 writes the file; the others may return before it is closed.
   MPI_Barrier(comm_);
@@ -277,6 +281,7 @@ void Rve::reduce_cell_basis() {
   // depend on the cell, so they are taken out first and put back by the next increment.
   // docs/DESIGN.md §2.3.
   set_streaming(Mat3::Zero());
+  require_setup();
   std::ostringstream command;
   command << "change_box all xy final " << fmt(reduced(0, 1));
   if (spec_.dimension == 3)
@@ -284,12 +289,7 @@ void Rve::reduce_cell_basis() {
   engine_->command(command.str());
 }
 
-void Rve::run_to_box(const Mat3& target, int steps) {
-  const Mat3 h = box_matrix();
-  if ((target - h).isZero(0.0)) {
-    engine_->command("run " + std::to_string(steps));
-    return;
-  }
+std::string Rve::deform_fix(const Mat3& target) const {
   const Vec3 lo = engine_->box().lo;
   std::ostringstream fix;
   fix << "fix mpm_deform all deform 1";
@@ -299,14 +299,41 @@ void Rve::run_to_box(const Mat3& target, int steps) {
   if (spec_.dimension == 3)
     fix << " xz final " << fmt(target(0, 2)) << " yz final " << fmt(target(1, 2));
   fix << " remap " << (spec_.stream_velocity ? "v" : "x") << " flip no";
-  engine_->command(fix.str());
-  // `pre yes` (the default): `pre no` would keep the previous deformation target
-  // (docs/DESIGN.md §3.3).
+  return fix.str();
+}
+
+void Rve::require_setup() {
+  // The kept fix goes too: a command with its own set-up (change_box, write_restart) must not
+  // find a stale target.
+  if (deform_fix_kept_)
+    engine_->command("unfix mpm_deform");
+  deform_fix_kept_ = false;
+  continuable_ = false;
+}
+
+void Rve::run_to_box(const Mat3& target, int steps, EngineRun run) {
+  const bool keep = run == EngineRun::continued;
+  if (keep && continuable_) {
+    engine_->run_continued(deform_fix(target), steps);
+    return;
+  }
+  if (!keep)
+    require_setup();
+  if ((target - box_matrix()).isZero(0.0) && !keep) {
+    engine_->command("run " + std::to_string(steps));
+    return;
+  }
+  engine_->command(deform_fix(target));
+  // `pre yes` (the default): the fix's target is set in its set-up (docs/DESIGN.md §3.3).
   engine_->command("run " + std::to_string(steps));
+  if (keep) {
+    deform_fix_kept_ = continuable_ = true;
+    return;
+  }
   engine_->command("unfix mpm_deform");
 }
 
-int Rve::deform(const Mat3& dF, int substeps) {
+int Rve::deform(const Mat3& dF, int substeps, EngineRun run) {
   if (spec_.dimension == 2) {
     const double out_of_plane =
         std::abs(dF(0, 2)) + std::abs(dF(1, 2)) + std::abs(dF(2, 0)) + std::abs(dF(2, 1));
@@ -322,7 +349,7 @@ int Rve::deform(const Mat3& dF, int substeps) {
   const Mat3 effective = step.target * h.inverse();
   const int n = substeps > 0 ? substeps : substeps_for(effective);
   set_streaming((effective - Mat3::Identity()) / (n * spec_.time_step));
-  run_to_box(step.target, n);
+  run_to_box(step.target, n, run);
   rotation_ = rotation_ * step.rotation;
   particle_steps_ += static_cast<double>(n) * static_cast<double>(spec_.grains);
   strain_ += 0.5 * (effective + effective.transpose()) - Mat3::Identity();

@@ -51,9 +51,18 @@ class Rve {
   MPI_Comm comm() const { return comm_; }
   dem::Engine& engine() { return *engine_; }
 
+  //! How an update runs the engine (docs/DESIGN.md §3.3).
+  enum class EngineRun {
+    set_up,     //!< the engine's full set-up first (`run … pre yes`): every shipped update
+    continued,  //!< continue the last continued run without a set-up (Engine::run_continued);
+                //!< the first after require_setup(), a checkpoint or a cell change sets up
+  };
   //! Apply the physical deformation increment `dF` over `substeps` DEM steps (0: as the spec's
   //! sub-stepping rule says). Returns the number of DEM steps run.
-  int deform(const Mat3& dF, int substeps = 0);
+  int deform(const Mat3& dF, int substeps = 0, EngineRun run = EngineRun::set_up);
+  //! The next continued update runs the engine's full set-up (the caller says when:
+  //! rve.setup_every, so that a checkpoint or a move between ranks falls where every RVE sets up).
+  void require_setup();
   //! Let the packing evolve without deformation (removes any streaming motion).
   void relax(int steps) { deform(Mat3::Identity(), steps); }
 
@@ -119,7 +128,9 @@ class Rve {
   int substeps_for(const Mat3& effective_increment);
   void reduce_cell_basis();
   void set_streaming(const Mat3& gradient);
-  void run_to_box(const Mat3& target, int steps);
+  void run_to_box(const Mat3& target, int steps, EngineRun run);
+  //! The `fix deform` line that drives the box to `target` over the next run.
+  std::string deform_fix(const Mat3& target) const;
   //! Void ratio and step travel of `o` from the gathered grains.
   void add_cell_measures(const GrainState& grains, Observables& o) const;
   //! The engine's write_restart, then the file checked whole on every rank (throws if not).
@@ -134,6 +145,10 @@ class Rve {
   double particle_steps_ = 0.0;
   double last_mean_stress_ = 0.0;
   Mat3 strain_ = Mat3::Zero();
+  //! EngineRun::continued: the engine's fix deform left in place by the last run, and whether
+  //! the next continued update may run without a set-up.
+  bool deform_fix_kept_ = false;
+  bool continuable_ = false;
 };
 
 }  // namespace mpm_lig::rve

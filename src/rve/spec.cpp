@@ -200,6 +200,13 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   const std::string affine = node.choice_or(
       "affine_motion", {"streaming_velocity", "remap_positions"}, "streaming_velocity");
   s.stream_velocity = affine == "streaming_velocity";
+  s.setup_every = node.get_or<int>("setup_every", 1);
+  if (s.setup_every < 1)
+    node.fail("setup_every", "must be >= 1 (1: the engine's set-up before every update)");
+  if (s.setup_every > 1 && s.engine != "liggghts")
+    node.fail("setup_every",
+              "runs without the engine's set-up need engine \"liggghts\" (LAMMPS sets up its "
+              "contact computes after every run)");
   s.max_kinetic_ratio = node.positive_or("max_kinetic_ratio", 1.0);
   // Measured: sheared 60- and 400-disc packings, before and after liquefaction, carry 3 to 32
   // times the flow energy ½ Σ m (2 r |L|)²; a blow-up carries orders of magnitude more.

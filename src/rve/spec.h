@@ -74,7 +74,10 @@ struct RveSpec {
   PreparationSpec preparation;
   std::string restart_file;  //!< start from this engine restart instead of preparing
   SubstepSpec substeps;
-  bool stream_velocity = true;     //!< affine motion by streaming velocity (remap v) or remap x
+  bool stream_velocity = true;  //!< affine motion by streaming velocity (remap v) or remap x
+  //! The engine's full set-up (`run … pre yes`) before one update in `setup_every`; the updates
+  //! between continue its run without it (Engine::run_continued). 1: before every update.
+  int setup_every = 1;
   double thickness = 0.0;          //!< 2D: out-of-plane thickness that turns N/m into Pa
   double max_kinetic_ratio = 1.0;  //!< health limit on kinetic / elastic energy ...
   double max_flow_ratio = 1000.0;  //!< ... together with kinetic / flow energy
