@@ -8,12 +8,12 @@
 # checked, the stop message and the checkpoint are.
 # SIGNAL=HUP (default TERM) sends another stop signal.
 # The run is asked for far more steps than it can make before the signal arrives (no race with
-# a fast machine); the resume is then asked to end 300 steps after the stop (`end` is a key a
-# resume may change).
+# a fast machine); the resume is then asked to end RESUME_STEPS (default 300) steps after the
+# stop (`end` is a key a resume may change).
 # With IDENTITY=1 the resumed run is compared with an uninterrupted run that writes no
 # checkpoint: writing one must not change the arithmetic (chaotic DEM: any round-off difference
 # grows to percents over hundreds of steps), so they must be bit-identical.
-# usage: [SIGNAL=HUP] [IDENTITY=1] sigterm_checkpoint.sh MPM_LIG CASE.json WORK_DIR [LAUNCHER ...]
+# usage: [SIGNAL=HUP] [IDENTITY=1] [RESUME_STEPS=n] sigterm_checkpoint.sh MPM_LIG CASE.json WORK_DIR [LAUNCHER ...]
 set -e
 signal=${SIGNAL:-TERM}
 exe=$1 case=$2 work=$3
@@ -53,7 +53,7 @@ rows=$(($(wc -l < "$run/history.csv") - 1))
 echo "stopped at step $step, $rows history rows, exit $status $(echo "$end - $start" | bc) s after SIG$signal"
 [ "$rows" -eq $((step + 1)) ] || { echo "history rows do not match the checkpoint"; exit 1; }
 [ -f "$run/summary.json" ] && { echo "the run ended before the signal"; exit 1; }
-end=$((step + 300))
+end=$((step + ${RESUME_STEPS:-300}))
 /usr/bin/python3 - "$work/case.json" "$work/resume.json" "$end" <<'PY'
 import json, sys
 c = json.load(open(sys.argv[1]))
