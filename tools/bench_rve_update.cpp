@@ -1,7 +1,8 @@
 // Fixed cost of one RVE update next to its DEM stepping (a benchmark tool, never a test).
 //
 // usage: bench_rve_update CASE.json [--grains N] [--updates M] [--substeps 1,20,100]
-//                         [--setup-every 1,20] [--repeats R] [--cpu-time] [--json FILE]
+//                         [--setup-every 1,20] [--varying] [--repeats R] [--cpu-time]
+//                         [--json FILE]
 //
 // Prepares the packing of CASE.json's "rve" node once (with N grains if given), then, R times and
 // alternately for every sub-step count n, clones it and times M updates of a small simple shear
@@ -13,10 +14,13 @@
 // JSON. --cpu-time times the process's CPU time instead of the wall clock (on a loaded machine).
 // --setup-every K1,K2,...: the RVE's `setup_every` (the engine's full set-up before one update
 // in K, the others continuing its run), each timed in turn within every repeat: side by side.
+// --varying: the shear's direction turns a little at every update, so that every update changes
+// the grains' streaming velocities as an MPM point's do (the plain shear changes them once).
 #include <mpi.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -45,6 +49,7 @@ struct Options {
   long grains = 0;
   int updates = 200, repeats = 3;
   bool cpu_time = false;
+  bool varying = false;
   std::vector<int> substeps = {1, 20, 100};
   std::vector<int> setup_every = {1};
 };
@@ -74,6 +79,8 @@ Options parse(int argc, char** argv) {
       o.repeats = std::stoi(value());
     else if (a == "--cpu-time")
       o.cpu_time = true;
+    else if (a == "--varying")
+      o.varying = true;
     else if (a == "--json")
       o.json_file = value();
     else if (a == "--substeps")
@@ -90,7 +97,8 @@ Options parse(int argc, char** argv) {
   if (o.case_file.empty() || o.substeps.size() < 2 || o.updates < 1 || o.repeats < 1 || !setup_ok)
     throw std::invalid_argument(
         "usage: bench_rve_update CASE.json [--grains N] [--updates M] "
-        "[--substeps 1,20,100] [--setup-every 1,20] [--repeats R] [--cpu-time] [--json FILE]");
+        "[--substeps 1,20,100] [--setup-every 1,20] [--varying] [--repeats R] [--cpu-time] "
+        "[--json FILE]");
   return o;
 }
 
@@ -113,12 +121,20 @@ enum class Look { none, health, full };
 
 //! Seconds per update of `updates` updates with n sub-steps on a fresh clone.
 double time_updates(const rve::RveSpec& spec, const std::string& packing, int n, int updates,
-                    Look look, bool cpu_time) {
+                    Look look, bool cpu_time, bool varying) {
   auto r = rve::Rve::from_restart(spec, packing, MPI_COMM_SELF, "bench");
   Mat3 dF = Mat3::Identity();
   dF(0, 1) = 1e-5 * n;  // the same shear rate per DEM step for every n
   const double start = now_seconds(cpu_time);
   for (int k = 0; k < updates; ++k) {
+    if (varying) {
+      // A pure shear whose axes turn by 0.1 rad per update: a new velocity gradient each time.
+      const double angle = 0.1 * k, rate = 1e-5 * n;
+      dF = Mat3::Identity();
+      dF(0, 0) += rate * std::cos(angle);
+      dF(1, 1) -= rate * std::cos(angle);
+      dF(0, 1) = dF(1, 0) = rate * std::sin(angle);
+    }
     if (k % spec.setup_every == 0)
       r->require_setup();
     r->deform(dF, n,
@@ -153,8 +169,9 @@ nlohmann::json report(const rve::RveSpec& spec, const Options& o, int setup_ever
   const auto [fixed_deform, per_step] = line(x, deform_only);
   const auto [fixed_total, per_step_total] = line(x, with_observe);
   const auto [fixed_full, per_step_full] = line(x, with_full);
-  std::printf("%ld grains, setup_every %d, %d updates x %d repeats (medians, %s)\n", spec.grains,
-              setup_every, o.updates, o.repeats, o.cpu_time ? "CPU time" : "wall clock");
+  std::printf("%ld grains, setup_every %d, %d updates x %d repeats (medians, %s%s)\n", spec.grains,
+              setup_every, o.updates, o.repeats, o.cpu_time ? "CPU time" : "wall clock",
+              o.varying ? ", a new velocity gradient every update" : "");
   std::printf("%9s %10s %12s %12s %13s %13s\n", "substeps", "deform ms", "+ health ms", "+ full ms",
               "fixed share", "(full look)");
   nlohmann::json rows = nlohmann::json::array();
@@ -176,6 +193,7 @@ nlohmann::json report(const rve::RveSpec& spec, const Options& o, int setup_ever
       1e3 * per_step, spec.grains / per_step);
   return {{"grains", spec.grains},
           {"setup_every", setup_every},
+          {"varying", o.varying},
           {"updates", o.updates},
           {"repeats", o.repeats},
           {"rows", rows},
@@ -224,9 +242,12 @@ int main(int argc, char** argv) {
       for (std::size_t m = 0; m < series.size(); ++m) {
         rve::RveSpec timed = spec;
         timed.setup_every = o.setup_every[m];
-        a[m].push_back(time_updates(timed, packing, n, o.updates, Look::none, o.cpu_time));
-        b[m].push_back(time_updates(timed, packing, n, o.updates, Look::health, o.cpu_time));
-        c[m].push_back(time_updates(timed, packing, n, o.updates, Look::full, o.cpu_time));
+        a[m].push_back(
+            time_updates(timed, packing, n, o.updates, Look::none, o.cpu_time, o.varying));
+        b[m].push_back(
+            time_updates(timed, packing, n, o.updates, Look::health, o.cpu_time, o.varying));
+        c[m].push_back(
+            time_updates(timed, packing, n, o.updates, Look::full, o.cpu_time, o.varying));
       }
     }
     for (std::size_t m = 0; m < series.size(); ++m) {

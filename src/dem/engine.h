@@ -91,6 +91,12 @@ class Engine {
   //! the pair style was defined.
   virtual std::vector<Overlap> overlaps() = 0;
 
+  //! Add the velocity field `gradient`·(x − `origin`) to every grain (x its position; in 2D the
+  //! in-plane rows only) and then take out the packing's net momentum: what `variable … atom`,
+  //! `velocity all set … sum yes units box` and `velocity all zero linear` do. LIGGGHTS does
+  //! their arithmetic in place, in their order (no command parsed); results are the same bit
+  //! for bit.
+  virtual void add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) = 0;
   //! Whether run_continued() is available (LIGGGHTS: yes; LAMMPS: no, its contact computes
   //! set up after every run).
   virtual bool can_continue_runs() const { return false; }

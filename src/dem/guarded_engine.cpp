@@ -130,6 +130,11 @@ std::vector<Overlap> GuardedEngine::overlaps() {
   return impl_->overlaps();
 }
 
+void GuardedEngine::add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) {
+  Scope scope(this);
+  impl_->add_velocity_field(gradient, origin, dimension);
+}
+
 bool GuardedEngine::can_continue_runs() const {
   return impl_->can_continue_runs();
 }

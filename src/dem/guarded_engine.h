@@ -38,6 +38,7 @@ class GuardedEngine final : public Engine {
   std::vector<Contact> contacts() override;
   std::vector<Overlap> overlaps() override;
   std::string recent_output() const override;
+  void add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) override;
   bool can_continue_runs() const override;
   void run_continued(const std::string& deform_fix, int steps) override;
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 #include "library.h"  // the engine's own C interface (include path set per module)
@@ -41,6 +43,23 @@ void LibraryEngine::command(const std::string& line) {
 void LibraryEngine::commands(const std::string& script) {
   for (const std::string& line : split_script(script))
     command(line);
+}
+
+void LibraryEngine::add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) {
+  constexpr const char* kAxes = "xyz";
+  std::ostringstream script;
+  script << std::setprecision(17);
+  for (int i = 0; i < 3; ++i) {
+    script << "variable mpm_stream_" << kAxes[i] << " atom ";
+    for (int j = 0; j < 3; ++j)
+      script << (j ? "+" : "") << "(" << gradient(i, j) << ")*(" << kAxes[j] << "-(" << origin[j]
+             << "))";
+    script << '\n';
+  }
+  script << "velocity all set v_mpm_stream_x v_mpm_stream_y "
+         << (dimension == 3 ? "v_mpm_stream_z" : "NULL") << " sum yes units box\n"
+         << "velocity all zero linear\n";
+  commands(script.str());
 }
 
 double LibraryEngine::compute_scalar(const std::string& compute_id) {

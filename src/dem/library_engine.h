@@ -31,6 +31,8 @@ class LibraryEngine : public ModuleEngine {
   void scatter_atom_ints(const std::string& name, int count,
                          const std::vector<int>& values) override;
   std::string recent_output() const override { return output_.text(); }
+  //! The three commands (LAMMPS).
+  void add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) override;
   void record_output(const std::string& text) override { output_.append(text); }
   long ghost_count() const override;
 

@@ -61,6 +61,7 @@ class LiggghtsEngine final : public LibraryEngine {
 
   std::vector<Contact> contacts() override;
   std::vector<Overlap> overlaps() override;
+  void add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) override;
   bool can_continue_runs() const override { return true; }
   void run_continued(const std::string& deform_fix, int steps) override;
 
@@ -118,6 +119,45 @@ std::vector<Contact> LiggghtsEngine::contacts() {
     c.branch = minimum_image(x[c.id_j - 1] - x[c.id_i - 1], h);
   }
   return result;
+}
+
+// The arithmetic of the commands LibraryEngine::add_velocity_field issues, in their order: the
+// atom-style variable evaluates ((g0·(x−o0) + g1·(y−o1)) + g2·(z−o2)) per grain (its numbers
+// are printed with 17 digits, so they parse back to these), `velocity set … sum yes` adds it,
+// and `velocity zero linear` subtracts the centre of mass's velocity, Σ m v / Σ m summed grain
+// by grain and then over the ranks (Group::mass, Group::vcm).
+void LiggghtsEngine::add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) {
+  LAMMPS_NS::Atom& atom = *lmp_->atom;
+  const int n = atom.nlocal;
+  double** x = atom.x;
+  double** v = atom.v;
+  const double* mass = atom.rmass;
+  if (!mass)
+    throw std::logic_error("liggghts add_velocity_field: grains without per-grain mass");
+  const int rows = dimension == 3 ? 3 : 2;
+  for (int i = 0; i < n; ++i) {
+    double added[3];
+    for (int r = 0; r < rows; ++r)
+      added[r] = gradient(r, 0) * (x[i][0] - origin[0]) + gradient(r, 1) * (x[i][1] - origin[1]) +
+                 gradient(r, 2) * (x[i][2] - origin[2]);
+    for (int r = 0; r < rows; ++r)
+      v[i][r] += added[r];
+  }
+  double mine = 0.0, momentum[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < n; ++i)
+    mine += mass[i];
+  for (int i = 0; i < n; ++i)
+    for (int r = 0; r < 3; ++r)
+      momentum[r] += v[i][r] * mass[i];
+  double total = 0.0, centre[3];
+  MPI_Allreduce(&mine, &total, 1, MPI_DOUBLE, MPI_SUM, comm());
+  MPI_Allreduce(momentum, centre, 3, MPI_DOUBLE, MPI_SUM, comm());
+  if (total > 0.0)
+    for (double& c : centre)
+      c /= total;
+  for (int i = 0; i < n; ++i)
+    for (int r = 0; r < 3; ++r)
+      v[i][r] -= centre[r];
 }
 
 // `run N pre no` skips LAMMPS::init, so a fix added since the last set-up is in none of the

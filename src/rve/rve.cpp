@@ -253,22 +253,9 @@ void Rve::set_streaming(const Mat3& gradient) {
   const Mat3 change = gradient - streaming_;
   if (change.isZero(0.0))
     return;
-  const Vec3 lo = engine_->box().lo;
-  std::ostringstream script;
-  for (int i = 0; i < 3; ++i) {
-    script << "variable mpm_stream_" << kAxes[i] << " atom ";
-    for (int j = 0; j < 3; ++j)
-      script << (j ? "+" : "") << "(" << fmt(change(i, j)) << ")*(" << kAxes[j] << "-("
-             << fmt(lo[j]) << "))";
-    script << '\n';
-  }
-  script << "velocity all set v_mpm_stream_x v_mpm_stream_y "
-         << (spec_.dimension == 3 ? "v_mpm_stream_z" : "NULL")
-         << " sum yes units box\n"
-         // Grains wrapped across the cell between two changes of the field would otherwise
-         // leave a net momentum: an undamped drift of the whole packing.
-         << "velocity all zero linear\n";
-  engine_->commands(script.str());
+  // The engine also takes out the net momentum: grains wrapped across the cell between two
+  // changes of the field would otherwise leave an undamped drift of the whole packing.
+  engine_->add_velocity_field(change, engine_->box().lo, spec_.dimension);
   streaming_ = gradient;
 }
 
