@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 #include <stdexcept>
 
+#include "dem/velocity_field.h"
 #include "library.h"  // the engine's own C interface (include path set per module)
 #include "lmptype.h"
 
@@ -46,20 +45,7 @@ void LibraryEngine::commands(const std::string& script) {
 }
 
 void LibraryEngine::add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) {
-  constexpr const char* kAxes = "xyz";
-  std::ostringstream script;
-  script << std::setprecision(17);
-  for (int i = 0; i < 3; ++i) {
-    script << "variable mpm_stream_" << kAxes[i] << " atom ";
-    for (int j = 0; j < 3; ++j)
-      script << (j ? "+" : "") << "(" << gradient(i, j) << ")*(" << kAxes[j] << "-(" << origin[j]
-             << "))";
-    script << '\n';
-  }
-  script << "velocity all set v_mpm_stream_x v_mpm_stream_y "
-         << (dimension == 3 ? "v_mpm_stream_z" : "NULL") << " sum yes units box\n"
-         << "velocity all zero linear\n";
-  commands(script.str());
+  commands(velocity_field_commands(gradient, origin, dimension, "mpm_stream"));
 }
 
 double LibraryEngine::compute_scalar(const std::string& compute_id) {

@@ -85,4 +85,19 @@ std::vector<Grain> jittered_packing(int n, double spacing, unsigned seed) {
   return grains;
 }
 
+std::unique_ptr<Engine> periodic_packing(const std::string& engine, const std::string& label,
+                                         double tilt) {
+  const Material material;
+  const int n = 4;
+  const double spacing = 0.01;
+  Box box;
+  box.hi = Vec3::Constant(n * spacing);
+  box.xy = tilt * spacing;
+  auto instance = create_engine(engine, MPI_COMM_SELF, {label, ""});
+  instance->commands(setup_script(engine, box, true, material));
+  instance->commands(grains_script(jittered_packing(n, spacing, 7u), material));
+  instance->commands(dynamics_script(1e-6, "p"));
+  return instance;
+}
+
 }  // namespace mpm_lig::dem::test

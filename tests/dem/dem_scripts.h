@@ -2,6 +2,7 @@
 // Engine input for the DEM layer tests: the same granular system in LIGGGHTS and LAMMPS
 // syntax (Hertz normal contact from Young's modulus and Poisson's ratio, Coulomb friction).
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,5 +39,10 @@ std::string dynamics_script(double timestep, const std::string& pressure_id);
 //! (spacing × [1.0, 1.04]) make neighbours overlap slightly: a dense-ish packing under
 //! pressure without a consolidation stage.
 std::vector<Grain> jittered_packing(int n, double spacing, unsigned seed);
+
+//! An instance of `engine` holding the jittered packing of 4³ grains 10 mm apart (seed 7) in a
+//! periodic box tilted by xy = `tilt` × spacing, set up to run (`compute p` its pressure).
+std::unique_ptr<Engine> periodic_packing(const std::string& engine, const std::string& label,
+                                         double tilt);
 
 }  // namespace mpm_lig::dem::test

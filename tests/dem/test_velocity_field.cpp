@@ -3,43 +3,15 @@
 // place: the grains' velocities, and the run after, the same bit for bit.
 #include <gtest/gtest.h>
 
-#include <iomanip>
-#include <sstream>
-
 #include "dem/engine.h"
+#include "dem/velocity_field.h"
 #include "dem_scripts.h"
 
 namespace mpm_lig::dem::test {
 namespace {
 
-//! The commands, as LAMMPS takes them (LibraryEngine::add_velocity_field).
-std::string velocity_commands(const Mat3& gradient, const Vec3& origin, int dimension) {
-  const char* axes = "xyz";
-  std::ostringstream script;
-  script << std::setprecision(17);
-  for (int i = 0; i < 3; ++i) {
-    script << "variable field_" << axes[i] << " atom ";
-    for (int j = 0; j < 3; ++j)
-      script << (j ? "+" : "") << "(" << gradient(i, j) << ")*(" << axes[j] << "-(" << origin[j]
-             << "))";
-    script << '\n';
-  }
-  script << "velocity all set v_field_x v_field_y " << (dimension == 3 ? "v_field_z" : "NULL")
-         << " sum yes units box\nvelocity all zero linear\n";
-  return script.str();
-}
-
 std::unique_ptr<Engine> sheared_packing() {
-  const Material material;
-  const int n = 4;
-  const double spacing = 0.01;
-  Box box;
-  box.hi = Vec3::Constant(n * spacing);
-  box.xy = 0.1 * spacing;
-  auto engine = create_engine("liggghts", MPI_COMM_SELF, {"velocity field test", ""});
-  engine->commands(setup_script("liggghts", box, true, material));
-  engine->commands(grains_script(jittered_packing(n, spacing, 7u), material));
-  engine->commands(dynamics_script(1e-6, "p"));
+  auto engine = periodic_packing("liggghts", "velocity field test", 0.1);
   engine->command("fix shear all deform 1 xy delta 0.002 remap v");
   engine->command("run 100");
   return engine;
@@ -67,7 +39,7 @@ TEST_P(VelocityField, InPlaceIsTheCommandsBitForBit) {
   const Vec3 origin(-1.5e-4, 2.5e-4, 3.1e-4);
   auto by_commands = sheared_packing();
   auto in_place = sheared_packing();
-  by_commands->commands(velocity_commands(gradient, origin, dimension));
+  by_commands->commands(velocity_field_commands(gradient, origin, dimension, "field"));
   in_place->add_velocity_field(gradient, origin, dimension);
   const std::vector<double> v = in_place->gather_atoms("v", 3);
   double largest = 0.0;

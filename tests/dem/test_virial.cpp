@@ -17,16 +17,7 @@ class VirialStress : public ::testing::TestWithParam<VirialCase> {};
 
 TEST_P(VirialStress, PressureTensorIsContactSum) {
   const VirialCase& param = GetParam();
-  const Material material;
-  const int n = 4;
-  const double spacing = 0.01;
-  Box box;
-  box.hi = Vec3::Constant(n * spacing);
-  box.xy = 0.1 * spacing;
-  auto engine = create_engine(param.engine, MPI_COMM_SELF, {"virial test", ""});
-  engine->commands(setup_script(param.engine, box, true, material));
-  engine->commands(grains_script(jittered_packing(n, spacing, 7u), material));
-  engine->commands(dynamics_script(1e-6, "p"));
+  auto engine = periodic_packing(param.engine, "virial test", 0.1);
   engine->command("fix shear all deform 1 xy delta 0.002 xz delta -0.001 remap x");
   engine->command("run 400");
   // contacts() evaluates forces at the current positions and velocities; the virial of the
