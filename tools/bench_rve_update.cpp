@@ -137,8 +137,7 @@ double time_updates(const rve::RveSpec& spec, const std::string& packing, int n,
     }
     if (k % spec.setup_every == 0)
       r->require_setup();
-    r->deform(dF, n,
-              spec.setup_every > 1 ? rve::Rve::EngineRun::continued : rve::Rve::EngineRun::set_up);
+    r->deform(dF, n, rve::update_engine_run(spec));
     if (look == Look::health)
       r->check_blow_up(r->observe_health());
     else if (look == Look::full)

@@ -179,8 +179,7 @@ void DemRveMaterial::update(const materials::MaterialStep& step, std::vector<Mat
   const bool period_start = (updates_ - 1) % spec_.setup_every == 0;
   if (period_start)
     rebalance(predicted, batch);
-  const auto run =
-      spec_.setup_every > 1 ? rve::Rve::EngineRun::continued : rve::Rve::EngineRun::set_up;
+  const rve::Rve::EngineRun run = rve::update_engine_run(spec_);
   const double start = MPI_Wtime();
   const std::vector<double> owned =
       rves_->deform(batch, results_.stress, updates_, run, period_start);

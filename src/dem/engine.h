@@ -97,16 +97,14 @@ class Engine {
   //! their arithmetic in place, in their order (no command parsed); results are the same bit
   //! for bit.
   virtual void add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) = 0;
-  //! Whether run_continued() is available (LIGGGHTS: yes; LAMMPS: no, its contact computes
-  //! set up after every run).
-  virtual bool can_continue_runs() const { return false; }
   //! Run `steps` DEM steps as the continuation of the last run, without the engine's set-up
   //! (`run N pre no post no`: no re-initialisation, neighbour build, atom sort or force
   //! evaluation), the box driven by `deform_fix`, a `fix ID all deform …` line whose ID the
   //! last run with a set-up already held: the fix is replaced in its slot and its start box,
   //! end box and rates set as its set-up would set them. Valid only while nothing since that
   //! run has changed the atoms, the box or the styles (docs/DESIGN.md §3.3). Throws
-  //! std::logic_error where can_continue_runs() is false or the fix is not there.
+  //! std::logic_error where the engine cannot (LAMMPS: its contact computes set up after every
+  //! run) or the fix is not there.
   virtual void run_continued(const std::string& /*deform_fix*/, int /*steps*/) {
     throw std::logic_error(name() + " cannot continue a run without its set-up");
   }

@@ -135,10 +135,6 @@ void GuardedEngine::add_velocity_field(const Mat3& gradient, const Vec3& origin,
   impl_->add_velocity_field(gradient, origin, dimension);
 }
 
-bool GuardedEngine::can_continue_runs() const {
-  return impl_->can_continue_runs();
-}
-
 void GuardedEngine::run_continued(const std::string& deform_fix, int steps) {
   Scope scope(this);
   impl_->run_continued(deform_fix, steps);

@@ -39,7 +39,6 @@ class GuardedEngine final : public Engine {
   std::vector<Overlap> overlaps() override;
   std::string recent_output() const override;
   void add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) override;
-  bool can_continue_runs() const override;
   void run_continued(const std::string& deform_fix, int steps) override;
 
   //! Ghost atoms on this rank (tests: health of periodic boxes).

@@ -62,7 +62,6 @@ class LiggghtsEngine final : public LibraryEngine {
   std::vector<Contact> contacts() override;
   std::vector<Overlap> overlaps() override;
   void add_velocity_field(const Mat3& gradient, const Vec3& origin, int dimension) override;
-  bool can_continue_runs() const override { return true; }
   void run_continued(const std::string& deform_fix, int steps) override;
 
  private:

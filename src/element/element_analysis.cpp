@@ -325,8 +325,7 @@ int ElementTest::apply_increment(rve::Rve& rve, StrainPath& path, int k, Loading
   const Mat3 dF = path.increment(k, state.now.stress);
   // rve.setup_every: the engine's set-up before one increment in setup_every (with its
   // corrections), the others continue its run.
-  const auto run =
-      rve_.setup_every > 1 ? rve::Rve::EngineRun::continued : rve::Rve::EngineRun::set_up;
+  const rve::Rve::EngineRun run = rve::update_engine_run(rve_);
   if (k % rve_.setup_every == 0)
     rve.require_setup();
   // A recorded path's increment runs the sub-steps its file gives, else (0) the RVE's rule:

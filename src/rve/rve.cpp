@@ -295,12 +295,11 @@ void Rve::require_setup() {
   if (deform_fix_kept_)
     engine_->command("unfix mpm_deform");
   deform_fix_kept_ = false;
-  continuable_ = false;
 }
 
 void Rve::run_to_box(const Mat3& target, int steps, EngineRun run) {
   const bool keep = run == EngineRun::continued;
-  if (keep && continuable_) {
+  if (keep && deform_fix_kept_) {
     engine_->run_continued(deform_fix(target), steps);
     return;
   }
@@ -314,7 +313,7 @@ void Rve::run_to_box(const Mat3& target, int steps, EngineRun run) {
   // `pre yes` (the default): the fix's target is set in its set-up (docs/DESIGN.md §3.3).
   engine_->command("run " + std::to_string(steps));
   if (keep) {
-    deform_fix_kept_ = continuable_ = true;
+    deform_fix_kept_ = true;
     return;
   }
   engine_->command("unfix mpm_deform");

@@ -145,10 +145,15 @@ class Rve {
   double particle_steps_ = 0.0;
   double last_mean_stress_ = 0.0;
   Mat3 strain_ = Mat3::Zero();
-  //! EngineRun::continued: the engine's fix deform left in place by the last run, and whether
-  //! the next continued update may run without a set-up.
+  //! EngineRun::continued: the engine's fix deform left in place by the last run; while it is,
+  //! the next continued update runs without a set-up.
   bool deform_fix_kept_ = false;
-  bool continuable_ = false;
 };
+
+//! How an update of an RVE of `spec` runs its engine: continued between set-ups where
+//! `setup_every` > 1 (the caller calls require_setup() once in setup_every updates).
+inline Rve::EngineRun update_engine_run(const RveSpec& spec) {
+  return spec.setup_every > 1 ? Rve::EngineRun::continued : Rve::EngineRun::set_up;
+}
 
 }  // namespace mpm_lig::rve
