@@ -201,8 +201,13 @@ RveSpec parse_rve_spec(const CaseNode& node) {
       "affine_motion", {"streaming_velocity", "remap_positions"}, "streaming_velocity");
   s.stream_velocity = affine == "streaming_velocity";
   s.setup_every = node.get_or<int>("setup_every", 1);
-  if (s.setup_every < 1)
-    node.fail("setup_every", "must be >= 1 (1: the engine's set-up before every update)");
+  // A checkpoint, asked for or on a stop signal, waits for the end of a period: at most
+  // setup_every - 1 steps, which must stay within a batch system's warning before the end.
+  if (s.setup_every < 1 || s.setup_every > 1000)
+    node.fail("setup_every",
+              "must be between 1 (the engine's set-up before every update) and "
+              "1000, got " +
+                  std::to_string(s.setup_every));
   if (s.setup_every > 1 && s.engine != "liggghts")
     node.fail("setup_every",
               "runs without the engine's set-up need engine \"liggghts\" (LAMMPS sets up its "
