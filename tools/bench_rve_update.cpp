@@ -1,8 +1,8 @@
 // Fixed cost of one RVE update next to its DEM stepping (a benchmark tool, never a test).
 //
-// usage: bench_rve_update CASE.json [--grains N] [--updates M] [--substeps 1,20,100]
-//                         [--setup-every 1,20] [--varying] [--repeats R] [--cpu-time]
-//                         [--json FILE]
+// usage: bench_rve_update CASE.json [--grains N] [--updates M | --steps S]
+//                         [--substeps 1,20,100] [--setup-every 1,20] [--varying] [--repeats R]
+//                         [--cpu-time] [--json FILE]
 //
 // Prepares the packing of CASE.json's "rve" node once (with N grains if given), then, R times and
 // alternately for every sub-step count n, clones it and times M updates of a small simple shear
@@ -16,6 +16,12 @@
 // in K, the others continuing its run), each timed in turn within every repeat: side by side.
 // --varying: the shear's direction turns a little at every update, so that every update changes
 // the grains' streaming velocities as an MPM point's do (the plain shear changes them once).
+// --steps S: every n runs the same S DEM steps (S/n updates) along the same strain path (with
+// --varying the direction turns by 0.005 rad per DEM step, 0.1 rad per 20), so every n steps
+// the packing through the same states and the line is straight: its slope is a step's cost on
+// that path and its intercept what an update costs besides. With --updates M the n differ in
+// how far the packing is sheared (M n steps), a step's cost changes with it, and the intercept
+// carries that difference as well.
 #include <mpi.h>
 
 #include <algorithm>
@@ -48,6 +54,7 @@ struct Options {
   std::string case_file, json_file;
   long grains = 0;
   int updates = 200, repeats = 3;
+  int steps = 0;  // > 0: the same DEM steps for every n (--steps)
   bool cpu_time = false;
   bool varying = false;
   std::vector<int> substeps = {1, 20, 100};
@@ -75,6 +82,8 @@ Options parse(int argc, char** argv) {
       o.grains = std::stol(value());
     else if (a == "--updates")
       o.updates = std::stoi(value());
+    else if (a == "--steps")
+      o.steps = std::stoi(value());
     else if (a == "--repeats")
       o.repeats = std::stoi(value());
     else if (a == "--cpu-time")
@@ -96,9 +105,12 @@ Options parse(int argc, char** argv) {
       !o.setup_every.empty() && *std::min_element(o.setup_every.begin(), o.setup_every.end()) >= 1;
   if (o.case_file.empty() || o.substeps.size() < 2 || o.updates < 1 || o.repeats < 1 || !setup_ok)
     throw std::invalid_argument(
-        "usage: bench_rve_update CASE.json [--grains N] [--updates M] "
+        "usage: bench_rve_update CASE.json [--grains N] [--updates M | --steps S] "
         "[--substeps 1,20,100] [--setup-every 1,20] [--varying] [--repeats R] [--cpu-time] "
         "[--json FILE]");
+  for (const int n : o.substeps)
+    if (n < 1 || (o.steps > 0 && o.steps % n != 0))
+      throw std::invalid_argument("every --substeps value must be >= 1 and divide --steps");
   return o;
 }
 
@@ -119,9 +131,10 @@ double now_seconds(bool cpu_time) {
 
 enum class Look { none, health, full };
 
-//! Seconds per update of `updates` updates with n sub-steps on a fresh clone.
+//! Seconds per update of `updates` updates with n sub-steps on a fresh clone. The shear's axes
+//! turn (`varying`) by 0.1 rad per update, or by `turn_per_step` per DEM step where that is > 0.
 double time_updates(const rve::RveSpec& spec, const std::string& packing, int n, int updates,
-                    Look look, bool cpu_time, bool varying) {
+                    Look look, bool cpu_time, bool varying, double turn_per_step) {
   auto r = rve::Rve::from_restart(spec, packing, MPI_COMM_SELF, "bench");
   Mat3 dF = Mat3::Identity();
   dF(0, 1) = 1e-5 * n;  // the same shear rate per DEM step for every n
@@ -129,7 +142,8 @@ double time_updates(const rve::RveSpec& spec, const std::string& packing, int n,
   for (int k = 0; k < updates; ++k) {
     if (varying) {
       // A pure shear whose axes turn by 0.1 rad per update: a new velocity gradient each time.
-      const double angle = 0.1 * k, rate = 1e-5 * n;
+      const double angle = turn_per_step > 0.0 ? turn_per_step * k * n : 0.1 * k;
+      const double rate = 1e-5 * n;
       dF = Mat3::Identity();
       dF(0, 0) += rate * std::cos(angle);
       dF(1, 1) -= rate * std::cos(angle);
@@ -168,8 +182,10 @@ nlohmann::json report(const rve::RveSpec& spec, const Options& o, int setup_ever
   const auto [fixed_deform, per_step] = line(x, deform_only);
   const auto [fixed_total, per_step_total] = line(x, with_observe);
   const auto [fixed_full, per_step_full] = line(x, with_full);
-  std::printf("%ld grains, setup_every %d, %d updates x %d repeats (medians, %s%s)\n", spec.grains,
-              setup_every, o.updates, o.repeats, o.cpu_time ? "CPU time" : "wall clock",
+  const std::string runs = o.steps > 0 ? std::to_string(o.steps) + " DEM steps on one path"
+                                       : std::to_string(o.updates) + " updates";
+  std::printf("%ld grains, setup_every %d, %s x %d repeats (medians, %s%s)\n", spec.grains,
+              setup_every, runs.c_str(), o.repeats, o.cpu_time ? "CPU time" : "wall clock",
               o.varying ? ", a new velocity gradient every update" : "");
   std::printf("%9s %10s %12s %12s %13s %13s\n", "substeps", "deform ms", "+ health ms", "+ full ms",
               "fixed share", "(full look)");
@@ -193,7 +209,8 @@ nlohmann::json report(const rve::RveSpec& spec, const Options& o, int setup_ever
   return {{"grains", spec.grains},
           {"setup_every", setup_every},
           {"varying", o.varying},
-          {"updates", o.updates},
+          {"updates", o.steps > 0 ? nlohmann::json() : nlohmann::json(o.updates)},
+          {"steps", o.steps},
           {"repeats", o.repeats},
           {"rows", rows},
           {"fixed_deform_seconds", fixed_deform},
@@ -236,17 +253,19 @@ int main(int argc, char** argv) {
   };
   std::vector<Series> series(o.setup_every.size());
   for (const int n : o.substeps) {
+    const int updates = o.steps > 0 ? o.steps / n : o.updates;
+    const double turn_per_step = o.steps > 0 ? 0.005 : 0.0;
     std::vector<std::vector<double>> a(series.size()), b(series.size()), c(series.size());
     for (int k = 0; k < o.repeats; ++k) {
       for (std::size_t m = 0; m < series.size(); ++m) {
         rve::RveSpec timed = spec;
         timed.setup_every = o.setup_every[m];
-        a[m].push_back(
-            time_updates(timed, packing, n, o.updates, Look::none, o.cpu_time, o.varying));
-        b[m].push_back(
-            time_updates(timed, packing, n, o.updates, Look::health, o.cpu_time, o.varying));
-        c[m].push_back(
-            time_updates(timed, packing, n, o.updates, Look::full, o.cpu_time, o.varying));
+        a[m].push_back(time_updates(timed, packing, n, updates, Look::none, o.cpu_time, o.varying,
+                                    turn_per_step));
+        b[m].push_back(time_updates(timed, packing, n, updates, Look::health, o.cpu_time, o.varying,
+                                    turn_per_step));
+        c[m].push_back(time_updates(timed, packing, n, updates, Look::full, o.cpu_time, o.varying,
+                                    turn_per_step));
       }
     }
     for (std::size_t m = 0; m < series.size(); ++m) {
