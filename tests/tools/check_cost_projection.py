@@ -1,6 +1,6 @@
 """Checks of tools/cost_projection.py on synthetic run summaries with known answers.
 
-usage: check_cost_projection.py CASE WORK_DIR   (CASE: steps | time | ranks | bad)
+usage: check_cost_projection.py CASE WORK_DIR   (CASE: steps | time | ranks | fixed | bad)
 """
 import json
 import math
@@ -132,6 +132,52 @@ def ranks(work):
         expect(r.returncode == 2 and word in r.stderr, f"{args}: exit {r.returncode}")
 
 
+def fixed(work):
+    a, a_case, b = setup(work)
+    # Run a did 50 sub-steps per update, one update per RVE and step, at 8e4 particle-steps per
+    # core-second; with 10 DEM steps of fixed cost per update that is 8e4 * 60 / 50 step
+    # equivalents. A setting measured on a smaller case: 0.4 of its shipped run's particle-steps,
+    # and 0.1 of its DEM updates (quiet points predict the rest).
+    shipped, quiet = os.path.join(work, "shipped"), os.path.join(work, "quiet")
+    os.makedirs(shipped)
+    os.makedirs(quiet)
+    write(os.path.join(shipped, "summary.json"),
+          {"dem_particle_steps": 5e8, "rve_count": 10, "mpm_steps": 1000})
+    write(os.path.join(quiet, "summary.json"),
+          {"dem_particle_steps": 2e8, "rve_count": 10, "mpm_steps": 1000,
+           "quiet_points": {"dem_updates": 1000, "predicted_updates": 9000}})
+    target = os.path.join(work, "target.json")
+    write(target, dem_case([1.0, 1.0], [10, 10], [1.0, 0.5], 2, 400, {"steps": 1000}))
+    out = os.path.join(work, "projection.json")
+    r = run(target, "--run", a, a_case, "--substeps", "100", "--fixed-steps", "10", "2",
+            "--setting", shipped, quiet, "--json", out)
+    expect(r.returncode == 0, f"exit code {r.returncode}")
+    p = json.load(open(out))["projection"]
+    rate = 8e4 * 60 / 50
+    close(p["particle_steps_per_s_per_core"], rate, "rate with the fixed cost")
+    close(p["setting"]["particle_steps_ratio"], 0.4, "particle-step ratio")
+    close(p["setting"]["dem_updates_ratio"], 0.1, "DEM update ratio")
+    close(p["core_seconds_per_mpm_step"], 200 * 400 * (100 * 0.4 + 2 * 0.1) / rate,
+          "core-s per step at the setting")
+    # Without the setting and with the same fixed cost for the target: every update pays 10.
+    r = run(target, "--run", a, a_case, "--substeps", "100", "--fixed-steps", "10", "--json", out)
+    p = json.load(open(out))["projection"]
+    close(p["core_seconds_per_mpm_step"], 200 * 400 * 110 / rate, "core-s per step, shipped")
+    # Steady flow alone predicts updates too: 10000 - 2500.
+    write(os.path.join(quiet, "summary.json"),
+          {"dem_particle_steps": 2e8, "rve_count": 10, "mpm_steps": 1000,
+           "steady_flow": {"predicted_updates": 2500}})
+    r = run(target, "--run", a, a_case, "--setting", shipped, quiet, "--json", out)
+    close(json.load(open(out))["projection"]["setting"]["dem_updates_ratio"], 0.75,
+          "updates predicted by steady flow")
+    # The rate of a run without its case file cannot be split; bad counts are refused.
+    for args, word in ((["--run", b, "--fixed-steps", "10"], "case file"),
+                       (["--run", a, a_case, "--fixed-steps", "1", "2", "3"], "--fixed-steps"),
+                       (["--run", a, a_case, "--fixed-steps", "-1"], "--fixed-steps")):
+        r = run(target, *args)
+        expect(r.returncode == 2 and word in r.stderr, f"{args}: exit {r.returncode} {r.stderr}")
+
+
 def bad(work):
     a, a_case, _ = setup(work)
     s = json.load(open(os.path.join(a, "summary.json")))
@@ -144,5 +190,5 @@ def bad(work):
 
 if __name__ == "__main__":
     case, work = sys.argv[1], sys.argv[2]
-    {"steps": steps, "time": time, "ranks": ranks, "bad": bad}[case](os.path.join(work, case))
+    {"steps": steps, "time": time, "ranks": ranks, "fixed": fixed, "bad": bad}[case](os.path.join(work, case))
     print(f"{case}: ok")

@@ -1,7 +1,9 @@
 """Project the cost of an mpm_lig run with dem_rve materials from short measured runs.
 
     tools/cost_projection.py TARGET.json --run OUT_DIR [CASE.json] [--run ...] [--json FILE]
-                             [--ranks N ...] [--efficiency E]
+                             [--ranks N ...] [--efficiency E] [--substeps N]
+                             [--rate R [AT_SUBSTEPS]] [--time-step DT]
+                             [--fixed-steps F [F_TARGET]] [--setting SHIPPED_DIR SETTING_DIR]
 
 Each measured run directory holds the `summary.json` that mpm_lig writes (wall_seconds,
 dem_particle_steps, rve_count, ranks, mpm_steps, time_split). The case file of a measured run is
@@ -15,6 +17,17 @@ With --ranks, the wall time of the stepping and the core-hours an allocation of 
 charged for it, at each N: a step lasts as long as the busiest rank, so the stepping efficiency
 is at most the RVE granularity (RVEs / N) / ceil(RVEs / N) (equal RVEs, one rank each), times
 --efficiency (default 1: the RVEs' cost spread perfectly; give a measured or modelled figure).
+
+--fixed-steps F: what a DEM update costs besides its DEM steps, in DEM steps (the intercept over
+the slope of `bench_rve_update --steps`), for the measured runs' updates, and F_TARGET for the
+target's (default F; e.g. with `rve.setup_every` 20 against 1). The measured rate is then read
+as (sub-steps + F x DEM updates) per core-second, and the target costs its sub-steps plus
+F_TARGET per DEM update: a rate measured at few sub-steps per update no longer charges its fixed
+share to every step of a target with many.
+--setting SHIPPED_DIR SETTING_DIR: project the target at a work-saving setting measured on a
+smaller case run both ways: its particle-steps and its DEM updates are the target's as shipped
+times the ratios SETTING / SHIPPED of the two runs (quiet points and steady flow predict updates
+without the DEM; `summary.json` counts them).
 Exit code 2 on a missing file or key (named in the message).
 """
 from mpm_lig_post.requirements import require
@@ -93,6 +106,7 @@ def measure(run_dir, case_path):
         raise InputError(f"{where}: no stepping measured (wall {wall} s, {steps} steps)")
     m = {
         "run": run_dir,
+        "dem_updates_per_rve_step": dem_updates(s, where) / (rves * steps),
         "ranks": ranks,
         "rve_count": rves,
         "mpm_steps": steps,
@@ -113,6 +127,34 @@ def measure(run_dir, case_path):
     return m
 
 
+def dem_updates(summary, where):
+    """The RVE updates a run gave to the DEM: every point and step but those predicted."""
+    quiet = summary.get("quiet_points")
+    if quiet is not None:
+        return need(quiet, "dem_updates", where + ": quiet_points", True)
+    steps = need(summary, "mpm_steps", where, True) + summary.get("gravity_stage_steps", 0)
+    every = need(summary, "rve_count", where, True) * steps
+    return every - summary.get("steady_flow", {}).get("predicted_updates", 0.0)
+
+
+def setting_ratios(shipped_dir, setting_dir):
+    """Particle-steps and DEM updates of a setting against the shipped run of the same case."""
+    ratios = []
+    for key in ("dem_particle_steps", "dem_updates"):
+        values = []
+        for d in (shipped_dir, setting_dir):
+            where = f"{d}/summary.json"
+            s = read_json(where)
+            values.append(dem_updates(s, where) if key == "dem_updates"
+                          else need(s, key, where, True))
+        if values[0] <= 0:
+            raise InputError(f"{shipped_dir}/summary.json: {key} is {values[0]}: nothing to "
+                             "compare the setting with")
+        ratios.append(values[1] / values[0])
+    return {"shipped": shipped_dir, "setting": setting_dir, "particle_steps_ratio": ratios[0],
+            "dem_updates_ratio": ratios[1]}
+
+
 def target_steps(case, path, runs, notes):
     end = need(need(case, "analysis", path), "end", path + ": analysis")
     gravity = case["analysis"].get("gravity_stage", {}).get("steps", 0)
@@ -129,7 +171,8 @@ def target_steps(case, path, runs, notes):
     return math.ceil(t_end / dt) + gravity
 
 
-def project(runs, target_path, substeps=None, time_step=None, rate=None):
+def project(runs, target_path, substeps=None, time_step=None, rate=None, fixed=(0.0, 0.0),
+            setting=None, rate_substeps=None):
     case = read_json(target_path)
     notes = []
     rves = case_rves(case, target_path)
@@ -140,11 +183,28 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None):
     else:
         steps = target_steps(case, target_path, runs, notes)
     if rate is None:
-        rate = min(r["particle_steps_per_s_per_core"] for r in runs)
+        source = min(runs, key=lambda r: r["particle_steps_per_s_per_core"])
+        rate = source["particle_steps_per_s_per_core"]
         notes.append(f"rate {rate:.4g} particle-steps/s per core: the slowest measured run "
                      "(stepping phase, load imbalance included)")
+    elif rate_substeps:
+        source = {"run": "the given rate", "mean_substeps": rate_substeps,
+                  "dem_updates_per_rve_step": 1.0}
+        notes.append(f"rate {rate:.4g} particle-steps/s per core (given), measured at "
+                     f"{rate_substeps:.4g} sub-steps per update")
     else:
+        source = next((r for r in runs if "mean_substeps" in r), runs[0] if runs else {})
         notes.append(f"rate {rate:.4g} particle-steps/s per core (given)")
+    if fixed[0] > 0.0:
+        if "mean_substeps" not in source:
+            raise InputError(f"--fixed-steps: {source.get('run', '--rate')} needs its case file "
+                             "or --rate its sub-steps (the sub-steps per update split the rate "
+                             "into steps and fixed costs)")
+        n, u = source["mean_substeps"], source["dem_updates_per_rve_step"]
+        rate *= (n + fixed[0] * u) / n
+        notes.append(f"{rate:.4g} step-equivalents/s per core: that rate with {fixed[0]:.3g} DEM "
+                     f"steps of fixed cost on each of its {u:.3g} DEM updates per RVE and step "
+                     f"at {n:.4g} sub-steps")
     if substeps is None:
         known = [r["mean_substeps"] for r in runs if "mean_substeps" in r]
         if not known:
@@ -154,7 +214,16 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None):
                      "(inertial-number control: it grows with the strain rate per step)")
     else:
         notes.append(f"{substeps:.4g} DEM sub-steps per RVE and MPM step (given)")
-    particle_steps_per_mpm_step = sum(p * g for p, g in rves) * substeps
+    steps_ratio, updates = 1.0, 1.0
+    if setting:
+        steps_ratio, updates = setting["particle_steps_ratio"], setting["dem_updates_ratio"]
+        notes.append(f"the setting of {setting['setting']}: {steps_ratio:.4g} of the "
+                     f"particle-steps and {updates:.4g} of the DEM updates of "
+                     f"{setting['shipped']}")
+    if fixed[1] > 0.0:
+        notes.append(f"{fixed[1]:.3g} DEM steps of fixed cost per DEM update of the target")
+    cost_per_rve_step = substeps * steps_ratio + fixed[1] * updates
+    particle_steps_per_mpm_step = sum(p * g for p, g in rves) * cost_per_rve_step
     core_s_per_step = particle_steps_per_mpm_step / rate
     rve_count = sum(p for p, _ in rves)
     return {
@@ -163,6 +232,10 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None):
         "grains": sorted({g for _, g in rves}),
         "mpm_steps": steps,
         "substeps": substeps,
+        "fixed_steps": {"measured": fixed[0], "target": fixed[1]},
+        "setting": setting,
+        "dem_updates_per_rve_step": updates,
+        "substeps_at_setting": substeps * steps_ratio,
         "particle_steps_per_s_per_core": rate,
         "core_seconds_per_mpm_step": core_s_per_step,
         "core_seconds_per_mpm_step_per_rve": core_s_per_step / rve_count,
@@ -187,28 +260,47 @@ def at_ranks(projection, ranks, efficiency):
 
 def main(argv=None):
     p = cli.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--run", nargs="+", action="append", required=True, metavar="DIR [CASE]",
-                   help="a measured run's output directory, optionally followed by its case file")
+    p.add_argument("--run", nargs="+", action="append", default=[], metavar="DIR [CASE]",
+                   help="a measured run's output directory, optionally followed by its case file "
+                        "(none: --rate and --substeps give what it would)")
     p.add_argument("target", help="case file of the run to project")
     p.add_argument("--substeps", type=cli.positive, help="DEM sub-steps per RVE and MPM step")
     p.add_argument("--time-step", type=cli.positive, help="MPM time step of the target [s]")
-    p.add_argument("--rate", type=cli.positive, help="particle-steps/s per core to assume")
+    p.add_argument("--rate", type=cli.positive, nargs="+", metavar=("RATE", "AT_SUBSTEPS"),
+                   help="particle-steps/s per core to assume [measured at AT_SUBSTEPS sub-steps "
+                        "per update, one update per RVE and step]")
     p.add_argument("--json", help="write the result to this file")
     p.add_argument("--ranks", type=int, nargs="+", metavar="N",
                    help="rank counts to give the stepping's wall time and charged core-hours at")
     p.add_argument("--efficiency", type=float, default=1.0,
                    help="stepping efficiency besides the RVE granularity (default 1)")
+    p.add_argument("--fixed-steps", type=float, nargs="+", metavar="F",
+                   help="an update's fixed cost in DEM steps: measured runs' [target's]")
+    p.add_argument("--setting", nargs=2, metavar=("SHIPPED_DIR", "SETTING_DIR"),
+                   help="project the target at the setting SETTING_DIR was run with")
     a = p.parse_args(argv)
+    fixed = (0.0, 0.0)
+    if a.fixed_steps:
+        if len(a.fixed_steps) > 2 or min(a.fixed_steps) < 0.0:
+            raise InputError(f"--fixed-steps {a.fixed_steps}: one or two numbers >= 0")
+        fixed = (a.fixed_steps[0], a.fixed_steps[-1])
     cli.writable_file(a.json, "--json file")
     if any(len(r) > 2 for r in a.run):
         raise InputError("--run takes a directory and at most one case file")
+    rate, rate_substeps = (a.rate + [None])[:2] if a.rate else (None, None)
+    if a.rate and len(a.rate) > 2:
+        raise InputError(f"--rate {a.rate}: a rate and at most the sub-steps it was measured at")
+    if not a.run and not (rate and a.substeps):
+        raise InputError("no --run: give --rate and --substeps (and --time-step for an end time)")
     if a.ranks and min(a.ranks) < 1:
         raise InputError(f"--ranks {min(a.ranks)}: a rank count is at least 1")
     if not 0.0 < a.efficiency <= 1.0:
         raise InputError(f"--efficiency {a.efficiency}: a stepping efficiency is in (0, 1]")
     runs = [measure(r[0], r[1] if len(r) > 1 else None) for r in a.run]
+    setting = setting_ratios(*a.setting) if a.setting else None
     result = {"measured": runs,
-              "projection": project(runs, a.target, a.substeps, a.time_step, a.rate)}
+              "projection": project(runs, a.target, a.substeps, a.time_step, rate, fixed,
+                                    setting, rate_substeps)}
     if a.ranks:
         result["ranks"] = at_ranks(result["projection"], a.ranks, a.efficiency)
     for r in runs:
@@ -221,7 +313,7 @@ def main(argv=None):
         print(line)
     pr = result["projection"]
     print(f"target {pr['target']}: {pr['rve_count']} RVEs x {pr['grains']} grains x "
-          f"{pr['substeps']:.4g} sub-steps x {pr['mpm_steps']} MPM steps")
+          f"{pr['substeps_at_setting']:.4g} sub-steps x {pr['mpm_steps']} MPM steps")
     print(f"  {pr['core_seconds_per_mpm_step']:.4g} core-s per MPM step, "
           f"{pr['core_hours']:.4g} core-hours (packing preparation not included)")
     for n in pr["assumptions"]:
