@@ -9,8 +9,8 @@
 #      history.csv and results.h5 bit-identical to an uninterrupted run of the same case
 #      (tools/compare_outputs.py --results-only);
 #   3. a run that fails (an engine error injected with MPM_LIG_FAULT_POINT) is not requeued.
-# The case: CASE.json asked for far more steps than it can make before the signal, with
-# checkpoints every 20 steps; once it has stopped, its end is set to 150 steps after the stop
+# The case: CASE.json asked for far more steps than it can make before the signal (at 200 DEM
+# sub-steps per update), with checkpoints every 20 steps; once it has stopped, its end is set to 150 steps after the stop
 # (`end` is a key a resume may change, tests/coupling/sigterm_checkpoint.sh) and its time limit
 # put back to 30 minutes while Slurm holds the requeued job (BeginTime: AuthInfo's cred_expire
 # + 1 s, 21 s here against Slurm's default 121 s; released at once, slurmd refuses to start it:
@@ -171,6 +171,13 @@ import json, sys
 c = json.load(open(sys.argv[1]))
 c["analysis"]["end"] = {"steps": 100000}
 c.setdefault("output", {}).update({"every": 20, "checkpoint_every": 20})
+# As given, its points leave the mesh after about 2300 steps, which a loaded machine reached
+# before slurmctld's time-limit check sent the signal. Loaded 20 times slower and stepped at 200
+# DEM sub-steps (each step about 7 times the cost), it runs for minutes before that can happen.
+c["materials"][0]["rve"]["substeps"] = {"fixed": 200}
+for bc in c["boundary_conditions"]:
+    if bc["type"] == "velocity":
+        bc["velocity"] *= 0.05
 json.dump(c, open(sys.argv[2], "w"), indent=1)
 PY
 submit() {  # submit OUTPUT_DIR [ENV=VALUE]: the batch script on 2 tasks, its log WORK_DIR/NAME.out
