@@ -197,9 +197,9 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None, fixed=(
         notes.append(f"rate {rate:.4g} particle-steps/s per core (given)")
     if fixed[0] > 0.0:
         if "mean_substeps" not in source:
-            raise InputError(f"--fixed-steps: {source.get('run', '--rate')} needs its case file "
-                             "or --rate its sub-steps (the sub-steps per update split the rate "
-                             "into steps and fixed costs)")
+            raise InputError("--fixed-steps needs the sub-steps per update the rate was measured "
+                             "at (they split it into steps and fixed costs): --rate R AT_SUBSTEPS,"
+                             " or a --run with its case file")
         n, u = source["mean_substeps"], source["dem_updates_per_rve_step"]
         rate *= (n + fixed[0] * u) / n
         notes.append(f"{rate:.4g} step-equivalents/s per core: that rate with {fixed[0]:.3g} DEM "
