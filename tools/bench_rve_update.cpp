@@ -39,6 +39,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/case_error.h"
 #include "core/case_node.h"
 #include "core/mpi_session.h"
 #include "rve/consolidation.h"
@@ -108,6 +109,8 @@ Options parse(int argc, char** argv) {
         "usage: bench_rve_update CASE.json [--grains N] [--updates M | --steps S] "
         "[--substeps 1,20,100] [--setup-every 1,20] [--varying] [--repeats R] [--cpu-time] "
         "[--json FILE]");
+  if (o.steps < 0)
+    throw std::invalid_argument("--steps must be > 0");
   for (const int n : o.substeps)
     if (n < 1 || (o.steps > 0 && o.steps % n != 0))
       throw std::invalid_argument("every --substeps value must be >= 1 and divide --steps");
@@ -141,7 +144,7 @@ double time_updates(const rve::RveSpec& spec, const std::string& packing, int n,
   const double start = now_seconds(cpu_time);
   for (int k = 0; k < updates; ++k) {
     if (varying) {
-      // A pure shear whose axes turn by 0.1 rad per update: a new velocity gradient each time.
+      // A pure shear whose axes turn at every update: a new velocity gradient each time.
       const double angle = turn_per_step > 0.0 ? turn_per_step * k * n : 0.1 * k;
       const double rate = 1e-5 * n;
       dF = Mat3::Identity();
@@ -221,21 +224,22 @@ nlohmann::json report(const rve::RveSpec& spec, const Options& o, int setup_ever
           {"seconds_per_dem_step_with_observe", per_step_total}};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  mpm_lig::MpiSession mpi(&argc, &argv);
-  Options o;
-  try {
-    o = parse(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench_rve_update: %s\n", e.what());
-    return 2;
-  }
-  std::ifstream in(o.case_file);
+//! The case file's "rve" node; std::invalid_argument when the file cannot be read.
+nlohmann::json read_rve_node(const std::string& case_file) {
+  std::ifstream in(case_file);
+  if (!in)
+    throw std::invalid_argument("cannot read the case file '" + case_file + "'");
   std::stringstream text;
   text << in.rdbuf();
-  nlohmann::json rve_json = nlohmann::json::parse(text.str()).at("rve");
+  const nlohmann::json root = nlohmann::json::parse(text.str());
+  if (!root.contains("rve"))
+    throw std::invalid_argument(case_file + ": no \"rve\" node");
+  return root.at("rve");
+}
+
+//! Prepares the packing, times every sub-step count and setup_every, prints and writes tables.
+void run(const Options& o) {
+  nlohmann::json rve_json = read_rve_node(o.case_file);
   if (o.grains > 0)
     rve_json["grains"] = o.grains;
   rve_json.erase("restart_file");
@@ -286,6 +290,27 @@ int main(int argc, char** argv) {
       out_json = nlohmann::json{{"grains", spec.grains}, {"tables", tables}};
     std::ofstream out(o.json_file);
     out << out_json.dump(1) << "\n";
+    if (!out)
+      throw std::runtime_error("cannot write '" + o.json_file + "'");
   }
-  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  mpm_lig::MpiSession mpi(&argc, &argv);
+  try {
+    run(parse(argc, argv));
+    return 0;
+  } catch (const mpm_lig::CaseError& e) {
+    std::fprintf(stderr, "bench_rve_update: %s\n", e.what());
+  } catch (const nlohmann::json::exception& e) {
+    std::fprintf(stderr, "bench_rve_update: the case file is not valid JSON: %s\n", e.what());
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "bench_rve_update: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_rve_update: %s\n", e.what());
+    return 1;
+  }
+  return 2;
 }
