@@ -5,6 +5,7 @@
 // Prints a table (dimension, shape functions, scheme, points, updates/s) and writes JSON.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -84,7 +85,12 @@ int main(int argc, char** argv) {
   std::string json_file = "bench_mpm.json";
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--steps") && i + 1 < argc) {
-      steps = std::atol(argv[++i]);
+      char* end = nullptr;
+      steps = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || steps < 1) {
+        std::fprintf(stderr, "bench_mpm: --steps '%s': expected a whole number >= 1\n", argv[i]);
+        return 2;
+      }
     } else if (!std::strcmp(argv[i], "--json") && i + 1 < argc) {
       json_file = argv[++i];
     } else {
