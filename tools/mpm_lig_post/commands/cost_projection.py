@@ -195,6 +195,7 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None, fixed=(
     else:
         source = next((r for r in runs if "mean_substeps" in r), runs[0] if runs else {})
         notes.append(f"rate {rate:.4g} particle-steps/s per core (given)")
+    measured_rate = rate
     if fixed[0] > 0.0:
         if "mean_substeps" not in source:
             raise InputError("--fixed-steps needs the sub-steps per update the rate was measured "
@@ -236,7 +237,8 @@ def project(runs, target_path, substeps=None, time_step=None, rate=None, fixed=(
         "setting": setting,
         "dem_updates_per_rve_step": updates,
         "substeps_at_setting": substeps * steps_ratio,
-        "particle_steps_per_s_per_core": rate,
+        "particle_steps_per_s_per_core": measured_rate,
+        "step_equivalents_per_s_per_core": rate,
         "core_seconds_per_mpm_step": core_s_per_step,
         "core_seconds_per_mpm_step_per_rve": core_s_per_step / rve_count,
         "core_hours": core_s_per_step * steps / 3600.0,
