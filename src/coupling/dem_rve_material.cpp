@@ -176,7 +176,7 @@ void DemRveMaterial::update(const materials::MaterialStep& step, std::vector<Mat
   // rve.setup_every: every RVE sets up at the first update of each period, and only there may
   // RVEs move between ranks (a moved RVE's engine is new and must set up): which RVE moved,
   // and when, then changes no result.
-  const bool period_start = (updates_ - 1) % spec_.setup_every == 0;
+  const bool period_start = rve::starts_setup_period(spec_, updates_ - 1);
   if (period_start)
     rebalance(predicted, batch);
   const rve::Rve::EngineRun run = rve::update_engine_run(spec_);

@@ -60,7 +60,7 @@ class DemRveMaterial final : public materials::Material, public materials::Micro
   //! Its checkpoint holds every RVE (write_checkpoint / restore_checkpoint).
   bool checkpointable() const override { return true; }
   //! With rve.setup_every > 1: after the last update of a period (the next one sets up).
-  bool at_exact_checkpoint() const override { return updates_ % spec_.setup_every == 0; }
+  bool at_exact_checkpoint() const override { return rve::starts_setup_period(spec_, updates_); }
   void write_snapshot(std::size_t point, const std::string& prefix) override;
   //! dem_statistics() of its counters; the work shares; "stepping" once its RVEs are made;
   //! "quiet_points", "start_as_continuum" and "steady_flow" where the case asks for them.

@@ -326,7 +326,7 @@ int ElementTest::apply_increment(rve::Rve& rve, StrainPath& path, int k, Loading
   // rve.setup_every: the engine's set-up before one increment in setup_every (with its
   // corrections), the others continue its run.
   const rve::Rve::EngineRun run = rve::update_engine_run(rve_);
-  if (k % rve_.setup_every == 0)
+  if (rve::starts_setup_period(rve_, k))
     rve.require_setup();
   // A recorded path's increment runs the sub-steps its file gives, else (0) the RVE's rule:
   // the rule the coupling applies to an MPM point's update.

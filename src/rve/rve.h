@@ -156,4 +156,11 @@ inline Rve::EngineRun update_engine_run(const RveSpec& spec) {
   return spec.setup_every > 1 ? Rve::EngineRun::continued : Rve::EngineRun::set_up;
 }
 
+//! Whether update `update` (counted from 0) of an RVE of `spec` opens a period of
+//! `setup_every` updates: the engine sets up before it, and only there may the RVE move between
+//! ranks or be checkpointed exactly.
+inline bool starts_setup_period(const RveSpec& spec, long update) {
+  return update % spec.setup_every == 0;
+}
+
 }  // namespace mpm_lig::rve
