@@ -32,6 +32,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <time.h>
@@ -134,25 +135,27 @@ double now_seconds(bool cpu_time) {
 
 enum class Look { none, health, full };
 
-//! Seconds per update of `updates` updates with n sub-steps on a fresh clone. The shear's axes
-//! turn (`varying`) by 0.1 rad per update, or by `turn_per_step` per DEM step where that is > 0.
-double time_updates(const rve::RveSpec& spec, const std::string& packing, int n, int updates,
-                    Look look, bool cpu_time, bool varying, double turn_per_step) {
+//! Seconds per update with n sub-steps on a fresh clone: o.updates updates, or o.steps / n along
+//! one path (--steps). With --varying the shear's axes turn by 0.1 rad per update, or along one
+//! path by 0.005 rad per DEM step.
+double time_updates(const rve::RveSpec& spec, const std::string& packing, int n, Look look,
+                    const Options& o) {
+  const int updates = o.steps > 0 ? o.steps / n : o.updates;
   auto r = rve::Rve::from_restart(spec, packing, MPI_COMM_SELF, "bench");
   Mat3 dF = Mat3::Identity();
   dF(0, 1) = 1e-5 * n;  // the same shear rate per DEM step for every n
-  const double start = now_seconds(cpu_time);
+  const double start = now_seconds(o.cpu_time);
   for (int k = 0; k < updates; ++k) {
-    if (varying) {
+    if (o.varying) {
       // A pure shear whose axes turn at every update: a new velocity gradient each time.
-      const double angle = turn_per_step > 0.0 ? turn_per_step * k * n : 0.1 * k;
+      const double angle = o.steps > 0 ? 0.005 * k * n : 0.1 * k;
       const double rate = 1e-5 * n;
       dF = Mat3::Identity();
       dF(0, 0) += rate * std::cos(angle);
       dF(1, 1) -= rate * std::cos(angle);
       dF(0, 1) = dF(1, 0) = rate * std::sin(angle);
     }
-    if (k % spec.setup_every == 0)
+    if (rve::starts_setup_period(spec, k))
       r->require_setup();
     r->deform(dF, n, rve::update_engine_run(spec));
     if (look == Look::health)
@@ -160,7 +163,7 @@ double time_updates(const rve::RveSpec& spec, const std::string& packing, int n,
     else if (look == Look::full)
       r->check_blow_up(r->observe());
   }
-  return (now_seconds(cpu_time) - start) / updates;
+  return (now_seconds(o.cpu_time) - start) / updates;
 }
 
 //! Least-squares line y = a + b x.
@@ -245,31 +248,33 @@ void run(const Options& o) {
   rve_json.erase("restart_file");
   const auto doc = mpm_lig::CaseDocument::parse(nlohmann::json{{"rve", rve_json}}.dump());
   const rve::RveSpec spec = rve::parse_rve_spec(doc.root().child("rve"));
-  const std::string packing = std::filesystem::temp_directory_path() /
-                              ("bench_rve_update_" + std::to_string(getpid()) + ".restart");
+  // The prepared packing's restart file, removed however the bench ends.
+  struct TemporaryFile {
+    std::string path;
+    ~TemporaryFile() {
+      std::error_code ignored;  // a destructor must not throw; nothing to remove is fine
+      std::filesystem::remove(path, ignored);
+    }
+  } packing{std::filesystem::temp_directory_path() /
+            ("bench_rve_update_" + std::to_string(getpid()) + ".restart")};
   {
     auto prepared = rve::Rve::generate(spec, MPI_COMM_SELF, "bench");
     rve::consolidate(*prepared);
-    prepared->write_restart(packing);
+    prepared->write_restart(packing.path);
   }
   struct Series {
     std::vector<double> deform_only, with_observe, with_full;
   };
   std::vector<Series> series(o.setup_every.size());
   for (const int n : o.substeps) {
-    const int updates = o.steps > 0 ? o.steps / n : o.updates;
-    const double turn_per_step = o.steps > 0 ? 0.005 : 0.0;
     std::vector<std::vector<double>> a(series.size()), b(series.size()), c(series.size());
     for (int k = 0; k < o.repeats; ++k) {
       for (std::size_t m = 0; m < series.size(); ++m) {
         rve::RveSpec timed = spec;
         timed.setup_every = o.setup_every[m];
-        a[m].push_back(time_updates(timed, packing, n, updates, Look::none, o.cpu_time, o.varying,
-                                    turn_per_step));
-        b[m].push_back(time_updates(timed, packing, n, updates, Look::health, o.cpu_time, o.varying,
-                                    turn_per_step));
-        c[m].push_back(time_updates(timed, packing, n, updates, Look::full, o.cpu_time, o.varying,
-                                    turn_per_step));
+        a[m].push_back(time_updates(timed, packing.path, n, Look::none, o));
+        b[m].push_back(time_updates(timed, packing.path, n, Look::health, o));
+        c[m].push_back(time_updates(timed, packing.path, n, Look::full, o));
       }
     }
     for (std::size_t m = 0; m < series.size(); ++m) {
@@ -278,7 +283,6 @@ void run(const Options& o) {
       series[m].with_full.push_back(median(c[m]));
     }
   }
-  std::filesystem::remove(packing);
   const std::vector<double> x(o.substeps.begin(), o.substeps.end());
   nlohmann::json tables = nlohmann::json::array();
   for (std::size_t m = 0; m < series.size(); ++m)

@@ -38,13 +38,12 @@ def main(bench, case, work):
         expect([row["substeps"] for row in t["rows"]] == [1, 2, 4], f"rows {t['rows']}")
         for row in t["rows"]:
             expect(row["deform_seconds"] > 0 and row["update_seconds"] > 0, f"times {row}")
-    bad = [(["--steps", "30", "--substeps", "1,20"], "divide --steps"),
-           (["--steps", "-4"], "--steps must be > 0"),
-           (["--grains", "40"], "rve.grains"),
+    bad = [([case, "--steps", "30", "--substeps", "1,20"], "divide --steps"),
+           ([case, "--steps", "-4"], "--steps must be > 0"),
+           ([case, "--grains", "40"], "rve.grains"),
            ([os.path.join(work, "missing.json")], "cannot read the case file")]
     for args, message in bad:
-        named = [a for a in args if a.endswith(".json")]
-        r = run(bench, *(named or [case]), *[a for a in args if not a.endswith(".json")])
+        r = run(bench, *args)
         expect(r.returncode == 2 and message in r.stderr, f"{args}: exit {r.returncode}")
     print("bench_rve_update: ok")
 
