@@ -174,7 +174,8 @@ def fixed(work):
     # The rate of a run without its case file cannot be split; bad counts are refused.
     for args, word in ((["--run", b, "--fixed-steps", "10"], "case file"),
                        (["--run", a, a_case, "--fixed-steps", "1", "2", "3"], "--fixed-steps"),
-                       (["--run", a, a_case, "--fixed-steps", "-1"], "--fixed-steps")):
+                       (["--run", a, a_case, "--fixed-steps", "-1"], "--fixed-steps"),
+                       (["--run", a, a_case, "--fixed-steps", "nan"], "--fixed-steps")):
         r = run(target, *args)
         expect(r.returncode == 2 and word in r.stderr, f"{args}: exit {r.returncode} {r.stderr}")
 

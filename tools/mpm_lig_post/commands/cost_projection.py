@@ -276,15 +276,15 @@ def main(argv=None):
                    help="rank counts to give the stepping's wall time and charged core-hours at")
     p.add_argument("--efficiency", type=float, default=1.0,
                    help="stepping efficiency besides the RVE granularity (default 1)")
-    p.add_argument("--fixed-steps", type=float, nargs="+", metavar="F",
+    p.add_argument("--fixed-steps", type=cli.non_negative, nargs="+", metavar="F",
                    help="an update's fixed cost in DEM steps: measured runs' [target's]")
     p.add_argument("--setting", nargs=2, metavar=("SHIPPED_DIR", "SETTING_DIR"),
                    help="project the target at the setting SETTING_DIR was run with")
     a = p.parse_args(argv)
     fixed = (0.0, 0.0)
     if a.fixed_steps:
-        if len(a.fixed_steps) > 2 or min(a.fixed_steps) < 0.0:
-            raise InputError(f"--fixed-steps {a.fixed_steps}: one or two numbers >= 0")
+        if len(a.fixed_steps) > 2:
+            raise InputError(f"--fixed-steps {a.fixed_steps}: one or two numbers")
         fixed = (a.fixed_steps[0], a.fixed_steps[-1])
     cli.writable_file(a.json, "--json file")
     if any(len(r) > 2 for r in a.run):
