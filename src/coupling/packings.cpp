@@ -79,6 +79,7 @@ Packing prepare_packing(const rve::RveSpec& spec, std::size_t k, const std::stri
         io::rename_over(partial, file);
       MPI_Barrier(group_comm);
     });
+    rve->orient_cell();  // as its clones will be
   } else {
     rve = or_end_job(label + " not loaded",
                      [&] { return rve::Rve::from_restart(spec, file, group_comm, label); });

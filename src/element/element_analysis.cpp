@@ -188,6 +188,7 @@ std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohma
   rve::require_void_ratio(*rve, c);
   if (test_.save_restart)
     rve->write_restart((std::filesystem::path(context.output_dir) / "prepared.restart").string());
+  rve->orient_cell();
   return rve;
 }
 

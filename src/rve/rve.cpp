@@ -66,6 +66,7 @@ std::unique_ptr<Rve> Rve::from_restart(const RveSpec& spec, const std::string& r
                                        MPI_Comm comm, const std::string& label) {
   std::unique_ptr<Rve> rve = read(spec, restart_file, comm, label);
   rve->engine_->command("run 0");
+  rve->orient_cell();
   return rve;
 }
 
@@ -86,6 +87,18 @@ std::unique_ptr<Rve> Rve::from_checkpoint(const RveSpec& spec, const std::string
 
 std::string Rve::placement_file(const std::string& checkpoint_file) {
   return checkpoint_file + ".placement";
+}
+
+void Rve::orient_cell() {
+  if (spec_.cell_angle == 0.0)
+    return;
+  const double c = std::cos(spec_.cell_angle), s = std::sin(spec_.cell_angle);
+  Mat3 turn = Mat3::Identity();
+  turn(0, 0) = c;
+  turn(0, 1) = -s;
+  turn(1, 0) = s;
+  turn(1, 1) = c;
+  rotation_ = turn * rotation_;
 }
 
 Mat3 Rve::box_matrix() const {

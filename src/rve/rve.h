@@ -37,7 +37,8 @@ class Rve {
   //! A fresh loose packing generated from `spec` (not yet consolidated: see consolidate()).
   static std::unique_ptr<Rve> generate(const RveSpec& spec, MPI_Comm comm,
                                        const std::string& label);
-  //! A clone of a saved packing (engine restart file written by write_restart()).
+  //! A clone of a saved packing (engine restart file written by write_restart()), its cell
+  //! turned to the spec's cell_angle (orient_cell()).
   static std::unique_ptr<Rve> from_restart(const RveSpec& spec, const std::string& restart_file,
                                            MPI_Comm comm, const std::string& label);
   //! A running RVE again from its checkpoint (write_checkpoint()); take its state() with
@@ -79,6 +80,11 @@ class Rve {
   //! check_blow_up, and runaway kinetic energy: above max_kinetic_ratio × the elastic energy
   //! and max_flow_ratio × the flow energy (a liquefied packing passes).
   void check_health(const Observables& now) const;
+
+  //! Turn a packing prepared in its own frame so that its cell's first side lies at the spec's
+  //! cell_angle in the physical frame (a rigid turn of the whole packing: the grains and the box
+  //! keep their engine coordinates; only the rotation to the physical frame changes). 0: nothing.
+  void orient_cell();
 
   //! Change the sliding friction (compaction towards a target void ratio).
   void set_friction(double friction);

@@ -212,6 +212,7 @@ RveSpec parse_rve_spec(const CaseNode& node) {
     node.fail("setup_every",
               "runs without the engine's set-up need engine \"liggghts\" (LAMMPS sets up its "
               "contact computes after every run)");
+  s.cell_angle = node.in_range_or("cell_angle_deg", -90.0, 90.0, 0.0) * kDegree;
   s.max_kinetic_ratio = node.positive_or("max_kinetic_ratio", 1.0);
   // Measured: sheared 60- and 400-disc packings, before and after liquefaction, carry 3 to 32
   // times the flow energy ½ Σ m (2 r |L|)²; a blow-up carries orders of magnitude more.

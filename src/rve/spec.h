@@ -78,6 +78,11 @@ struct RveSpec {
   //! The engine's full set-up (`run … pre yes`) before one update in `setup_every`; the updates
   //! between continue its run without it (Engine::run_continued). 1: before every update.
   int setup_every = 1;
+  //! Angle from the physical x axis to the periodic cell's first side [rad], about z. A shear
+  //! band fits a periodic cell only along its lattice directions, and with the cell's whole
+  //! width between its images only along a side (docs/methods.md §7): 0 keeps the cell on the
+  //! physical axes.
+  double cell_angle = 0.0;
   double thickness = 0.0;          //!< 2D: out-of-plane thickness that turns N/m into Pa
   double max_kinetic_ratio = 1.0;  //!< health limit on kinetic / elastic energy ...
   double max_flow_ratio = 1000.0;  //!< ... together with kinetic / flow energy
