@@ -2,7 +2,9 @@
 mobilised angle rises to a 30° peak at 2 % axial strain and softens to 20° from 8 % on, while
 its lateral strain grows past the axial one (dilation), at two confining pressures. The peak
 angle, the Mohr-Coulomb fit (30°, c' = 0) and the residual angle over 10-15 % (20°) must come
-back; an empty residual window and a missing column end with exit 2 and the problem named.
+back, and the volumetric strain 0.4 x the axial one at the axial strains asked (between rows:
+the interpolation); an empty residual window, a volume asked beyond the last row and a
+missing column end with exit 2 and the problem named.
 
 usage: check_friction_angle.py synthetic|bad WORK_DIR"""
 import json
@@ -54,7 +56,8 @@ def synthetic(work):
     for r, p in zip(runs, (50e3, 200e3)):
         biaxial(r, p)
     out = os.path.join(work, "angles.json")
-    r = run(*runs, "--residual", "0.10", "0.15", "--json", out)
+    r = run(*runs, "--residual", "0.10", "0.15", "--volume-at", "0.05", "0.15", "0.12345",
+            "--json", out)
     expect(r.returncode == 0, f"exit {r.returncode}: {r.stderr}")
     result = json.load(open(out))
     expect(abs(result["friction_angle_deg"] - PEAK) < 1e-6, f"fit {result}")
@@ -64,6 +67,9 @@ def synthetic(work):
         expect(abs(row["residual_friction_deg"] - RESIDUAL) < 1e-6, f"residual {row}")
     expect(abs(result["residual_friction_deg"] - RESIDUAL) < 1e-6, f"mean residual {result}")
     expect("mean of 2 runs: 20.00 deg" in r.stdout, r.stdout)
+    for row in result["runs"] + [result]:
+        for e, v in row["volumetric_strain_at"].items():
+            expect(abs(v - 0.4 * float(e)) < 1e-12, f"volume at {e}: {v} in {row}")
 
 
 def bad(work):
@@ -71,6 +77,9 @@ def bad(work):
     r = run(os.path.join(work, "short"), "--residual", "0.10", "0.15")
     expect(r.returncode == 2 and "no row with axial strain in [0.1, 0.15]" in r.stderr,
            f"empty window: {r.returncode} {r.stderr}")
+    r = run(os.path.join(work, "short"), "--volume-at", "0.02")
+    expect(r.returncode == 2 and "--volume-at 0.02 beyond the largest axial strain 0.01" in r.stderr,
+           f"volume beyond the last row: {r.returncode} {r.stderr}")
     path = os.path.join(work, "short", "history.csv")
     lines = open(path).read().splitlines()
     with open(path, "w") as f:

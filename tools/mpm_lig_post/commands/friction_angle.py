@@ -1,6 +1,7 @@
 """Macroscopic friction angle from drained biaxial/triaxial element tests.
 
-usage: friction_angle.py RUN_DIR RUN_DIR [...] [--residual A B] [--json OUT.json]
+usage: friction_angle.py RUN_DIR RUN_DIR [...] [--residual A B] [--volume-at E [E ...]]
+                         [--json OUT.json]
 
 Each RUN_DIR holds history.csv and summary.json of one mpm_lig element test. For every run the
 peak state is the row of largest stress ratio (σ1 − σ3)/(σ1 + σ3) (principal stresses,
@@ -10,6 +11,8 @@ With runs at two or more confining pressures the fit separates friction from coh
 per-run mobilised angles are printed too. --residual A B adds each run's residual angle: the
 mean mobilised angle over the rows whose axial strain (the most compressive of e_xx, e_yy,
 e_zz, positive in compression) lies in [A, B], and the mean over the runs (for a softening soil, e.g. 0.10 0.15).
+--volume-at E ... adds each run's volumetric strain e_xx + e_yy + e_zz (dilation positive) at
+those axial strains, interpolated between rows, and the mean over the runs.
 """
 from mpm_lig_post.requirements import require
 
@@ -43,15 +46,33 @@ def peak_state(run_dir):
     return summary, best
 
 
-def residual_angle(run_dir, low, high):
-    """Mean mobilised friction angle [deg] over the rows with axial strain in [low, high]."""
+def axial_and_strains(run_dir):
+    """(summary, table, axial strain per row, history path) of a run."""
     summary = read_json(f"{run_dir}/summary.json")
     history_path = f"{run_dir}/history.csv"
     table = read_history(history_path)
     require_columns(table, STRESS_COLUMNS + ("e_xx", "e_yy", "e_zz"), history_path)
-    s1, s3 = principal_stresses(table, summary["dimension"])
     # Strains are tension positive; a dilating sample's lateral strain may exceed the axial one.
     axial = -np.min([table["e_xx"], table["e_yy"], table["e_zz"]], axis=0)
+    return summary, table, axial, history_path
+
+
+def volume_at(run_dir, strains):
+    """Volumetric strain (dilation positive) at each axial strain of `strains`."""
+    _, table, axial, history_path = axial_and_strains(run_dir)
+    volume = table["e_xx"] + table["e_yy"] + table["e_zz"]
+    if max(strains) > axial.max() + 1e-9:  # the last row's strain, to its rounding
+        raise InputError(f"{history_path}: --volume-at {max(strains):g} beyond the largest "
+                         f"axial strain {axial.max():.4g}")
+    if np.any(np.diff(axial) < 0):
+        raise InputError(f"{history_path}: the axial strain does not grow monotonically")
+    return [float(np.interp(e, axial, volume)) for e in strains]
+
+
+def residual_angle(run_dir, low, high):
+    """Mean mobilised friction angle [deg] over the rows with axial strain in [low, high]."""
+    summary, table, axial, history_path = axial_and_strains(run_dir)
+    s1, s3 = principal_stresses(table, summary["dimension"])
     rows = (axial >= low) & (axial <= high) & (s1 + s3 > 0)
     if not rows.any():
         raise InputError(f"{history_path}: no row with axial strain in [{low:g}, {high:g}] "
@@ -65,6 +86,8 @@ def main():
     parser.add_argument("runs", nargs="+")
     parser.add_argument("--residual", nargs=2, type=cli.non_negative, metavar=("A", "B"),
                         help="also the mean mobilised angle over axial strains in [A, B]")
+    parser.add_argument("--volume-at", nargs="+", type=cli.positive, metavar="E",
+                        help="also the volumetric strain at these axial strains")
     parser.add_argument("--json", help="write the result here")
     args = parser.parse_args()
     cli.writable_file(args.json, "--json file")
@@ -81,10 +104,15 @@ def main():
                      "mobilised_friction_deg": math.degrees(math.asin(ratio))})
         if args.residual:
             rows[-1]["residual_friction_deg"] = residual_angle(run, *args.residual)
-    extra = f" {'phi_res [deg]':>13s}" if args.residual else ""
+        if args.volume_at:
+            rows[-1]["volumetric_strain_at"] = dict(zip(map(str, args.volume_at),
+                                                        volume_at(run, args.volume_at)))
+    volume_heads = "".join(f" {'e_vol@' + format(e, 'g'):>10s}" for e in args.volume_at or [])
+    extra = (f" {'phi_res [deg]':>13s}" if args.residual else "") + volume_heads
     print(f"{'run':40s} {'sigma3 [kPa]':>12s} {'sigma1 [kPa]':>12s} {'phi_mob [deg]':>13s}{extra}")
     for r in rows:
         extra = f" {r['residual_friction_deg']:13.2f}" if args.residual else ""
+        extra += "".join(f" {v:10.4f}" for v in r.get("volumetric_strain_at", {}).values())
         print(f"{r['run']:40s} {r['sigma3']/1e3:12.1f} {r['sigma1']/1e3:12.1f} "
               f"{r['mobilised_friction_deg']:13.2f}{extra}")
     result = {"runs": rows}
@@ -93,6 +121,12 @@ def main():
         result["residual_friction_deg"] = mean
         print(f"residual angle over axial strain {args.residual[0]:g}-{args.residual[1]:g}, mean of "
               f"{len(rows)} runs: {mean:.2f} deg")
+    if args.volume_at:
+        result["volumetric_strain_at"] = {
+            str(e): sum(r["volumetric_strain_at"][str(e)] for r in rows) / len(rows)
+            for e in args.volume_at}
+        print("volumetric strain, mean of " + f"{len(rows)} runs: " + ", ".join(
+            f"{v:.4f} at {e}" for e, v in result["volumetric_strain_at"].items()))
     spread = (max(s_points) - min(s_points)) / (sum(s_points) / len(s_points))
     if len(rows) >= 2 and spread < 0.2:
         print("the runs' mean stresses at peak differ by less than 20 %: no fit (give runs at "

@@ -7,8 +7,8 @@ usage: rve_localisation.py OUTPUT_DIR... [--steps A B] [--rve SUBDIR|NAME] [--re
 Reads the RVE snapshots of an element test or an MPM run (as tools/plot_force_chains.py finds
 them; default the first and the last). The cell's deformation F between the two is
 H_B M H_A^-1 (H the cell's sides; M the change of cell basis that the RVE's tilt reduction
-may have made in between, the small unimodular matrix that leaves the grains' motion
-closest to affine). Each grain's motion apart from F, taken to the nearest periodic image,
+may have made in between, the small unimodular matrix under which neighbouring grains stay
+closest to their affine separation). Each grain's motion apart from F, taken to the nearest periodic image,
 gives around every grain a least-squares deformation gradient over the grains within R mean
 diameters (default 2.5) in the first snapshot, and its shear gamma = sqrt(2) |dev sym(F - 1)|.
 Printed per run: the cell's own gamma, the grains' mean gamma, the half-share fraction (the
@@ -61,17 +61,26 @@ def nearest_image(d, sides):
     return d - np.round(fractions) @ sides.T
 
 
-def cell_deformation(x0, x1, sides0, sides1):
-    """F of the cell and each grain's non-affine motion (n x 2, nearest image), over the basis
-    changes the RVE may have made between the snapshots."""
+def cell_deformation(x0, x1, sides0, sides1, cutoff):
+    """F of the cell and each grain's non-affine motion (n x 2, nearest image). Of the cell
+    basis changes the RVE may have made between the snapshots, the one under which
+    neighbouring grains (closer than `cutoff` in the first) stay closest to their affine
+    separation: a wrong one maps them a cell's width apart."""
+    i, j = np.triu_indices(len(x0), 1)
+    close = np.linalg.norm(nearest_image(x0[j] - x0[i], sides0), axis=1) < cutoff
+    if not close.any():
+        raise InputError(f"no two grains closer than {cutoff:g} m in the first snapshot")
+    i, j = i[close], j[close]
+    before = nearest_image(x0[j] - x0[i], sides0)
+    after = nearest_image(x1[j] - x1[i], sides1)
     best = None
     for m in BASIS_CHANGES:
         F = sides1 @ m @ np.linalg.inv(sides0)
-        u = nearest_image(x1 - x0 @ F.T, sides1)
-        spread = np.median(np.linalg.norm(u, axis=1))
+        spread = np.median(np.linalg.norm(after - before @ F.T, axis=1))
         if best is None or spread < best[0]:
-            best = (spread, F, u)
-    return best[1], best[2]
+            best = (spread, F)
+    F = best[1]
+    return F, nearest_image(x1 - x0 @ F.T, sides1)
 
 
 def shear(F):
@@ -85,8 +94,8 @@ def local_shear(x0, x1, radii, sides0, sides1, reach):
     """(gamma of each grain, gamma of the cell) between two snapshots of one RVE."""
     if len(x0) != len(x1) or not np.allclose(radii[0], radii[1]):
         raise InputError("the two snapshots hold different grains")
-    F, u = cell_deformation(x0, x1, sides0, sides1)
     cutoff = reach * 2.0 * radii[0].mean()
+    F, u = cell_deformation(x0, x1, sides0, sides1, cutoff)
     gamma = np.zeros(len(x0))
     for i in range(len(x0)):
         d0 = nearest_image(x0 - x0[i], sides0)
