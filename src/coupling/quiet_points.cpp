@@ -63,9 +63,25 @@ QuietSpec parse_quiet(const CaseNode& node) {
   s.tolerance = node.in_range_or("tolerance", 1e-8, 0.1, s.tolerance);
   s.max_error = node.in_range_or("max_error", 1e-6, 1.0, s.max_error);
   s.check_every = node.get_or<int>("check_every", s.check_every);
+  s.cap_friction = node.get_or<bool>("cap_friction", s.cap_friction);
   if (s.check_every < 1 || s.check_every > 1'000'000)
     node.fail("check_every", "must be between 1 and 1000000");
   return s;
+}
+
+Mat3 capped_friction(const Mat3& stress, double limit, int d) {
+  const double mean = -trace_d(stress, d) / d;  // compression positive
+  if (!(mean > 0.0) || mobilised_sin_friction(stress, d) <= limit)
+    return stress;
+  const Mat3 plane_part = in_plane(stress, d);
+  const Mat3 deviator = plane_part + mean * identity_d(d);
+  // With the deviator scaled by k, sin φ = k (e1 - e3) / (2 mean + k (e1 + e3)), e1 ≥ e3 its
+  // extreme principal values (compression positive; e1 + e3 = 0 in 2D).
+  const auto [e1, e3] = extreme_principal_stresses(deviator, d);
+  const double k = 2.0 * mean * limit / ((e1 - e3) - limit * (e1 + e3));
+  if (!(k >= 0.0 && k < 1.0))
+    return stress;
+  return stress - plane_part + (-mean * identity_d(d) + k * deviator);
 }
 
 void QuietPoints::start(std::size_t points, const QuietSpec& spec, int dimension,
@@ -135,6 +151,9 @@ bool QuietPoints::accumulate(std::size_t point, const Mat3& dF) {
   }
   if (!spec_.enabled)
     return true;
+  if (spec_.cap_friction)
+    predicted_[point] = capped_friction(
+        predicted_[point], mobilised_sin_friction(anchor_[point], dimension_), dimension_);
   const double strain = (pending_[point] - Mat3::Identity()).norm();
   if (strain >= r.tolerance || r.quiet_updates >= spec_.check_every)
     return true;

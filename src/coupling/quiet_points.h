@@ -14,7 +14,17 @@ struct QuietSpec {
   double tolerance = 1e-4;  //!< |F_pending - 1| below which a point's stress is predicted
   double max_error = 0.02;  //!< prediction error (relative to |σ|) that tightens a tolerance
   int check_every = 50;     //!< a point quiet this many updates in a row runs DEM (a check)
+  //! A prediction never mobilises more friction than the point's last DEM answer: a yielding
+  //! packing's secant (kept from before it yielded) would carry its stress past what the grains
+  //! hold (docs/dem_work.md §10).
+  bool cap_friction = false;
 };
+
+//! `stress` (tension positive) with its in-plane deviator scaled down so that its mobilised
+//! friction, sin φ = (σ1 − σ3)/(σ1 + σ3) compression positive over the first `d` axes, is at
+//! most `limit`; its mean stress and out-of-plane part kept. Unchanged where it is below
+//! `limit` or not compressive.
+Mat3 capped_friction(const Mat3& stress, double limit, int d);
 
 QuietSpec parse_quiet(const CaseNode& node);
 

@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 
+#include "core/plane_strain.h"
 #include "coupling/quiet_points.h"
 
 namespace mpm_lig::coupling {
@@ -131,6 +132,58 @@ TEST(QuietPoints, ViolatedBoundIsDetectedAndTightensTheTolerance) {
   EXPECT_GT(q.stats().max_error, 0.002);
   EXPECT_LE(tightest, 0.5e-4);
   EXPECT_EQ(q.tolerance(0), 1e-4);
+}
+
+// sin φ = (σ1 − σ3)/(σ1 + σ3), compression positive, in the first d axes.
+double sin_friction(const Mat3& stress, int d) {
+  const auto [s1, s3] = extreme_principal_stresses(stress, d);
+  return (s1 - s3) / (s1 + s3);
+}
+
+// The cap scales the deviator down to the limit, exactly, and keeps the mean stress, the
+// principal directions and (2D) the out-of-plane stress; below the limit it changes nothing.
+TEST(CappedFriction, ScalesTheDeviatorToTheLimitAndKeepsTheRest) {
+  Mat3 s = anchor();
+  s(0, 1) = s(1, 0) = -4e4;  // sin φ 0.43
+  for (const int d : {2, 3}) {
+    const double before = sin_friction(s, d);
+    const Mat3 capped = capped_friction(s, 0.3, d);
+    EXPECT_NEAR(sin_friction(capped, d), 0.3, 1e-12) << d;
+    EXPECT_NEAR(capped.topLeftCorner(d, d).trace(), s.topLeftCorner(d, d).trace(), 1e-9) << d;
+    if (d == 2)
+      EXPECT_EQ(capped(2, 2), s(2, 2));
+    // The same principal directions: the capped deviator is the original's multiple.
+    const Mat3 mean = s.topLeftCorner(d, d).trace() / d * plane::identity_d(d);
+    const Mat3 dev = plane::in_plane(s, d) - mean, dev_capped = plane::in_plane(capped, d) - mean;
+    EXPECT_LT((dev_capped - dev * (dev_capped(0, 1) / dev(0, 1))).norm(), 1e-9 * dev.norm()) << d;
+    EXPECT_GT(before, 0.35) << d;
+    const Mat3 same = capped_friction(s, before + 0.01, d);
+    EXPECT_EQ(same, s) << d;
+  }
+  const Mat3 tension = -s;  // not compressive: nothing to cap
+  EXPECT_EQ(capped_friction(tension, 0.1, 2), tension);
+}
+
+// With cap_friction a quiet point's prediction under growing shear mobilises no more friction
+// than its last DEM answer; without it the elastic secant carries it past that.
+TEST(QuietPoints, CappedPredictionStopsAtTheLastDemFriction) {
+  Mat3 shear = Mat3::Identity();  // x shortens, y lengthens: the anchor's deviator grows
+  shear(0, 0) = 1.0 - 2e-4;
+  shear(1, 1) = 1.0 + 2e-4;
+  for (const bool cap : {false, true}) {
+    QuietSpec s = spec(1e-2, 0.02, 50);
+    s.cap_friction = cap;
+    QuietPoints q;
+    q.start(1, s, 2, 1e3);
+    q.set_packing(0, anchor(), kWaveModulus, 0.0);
+    const double at_dem = sin_friction(anchor(), 2);
+    ASSERT_FALSE(q.accumulate(0, shear));
+    const double predicted = sin_friction(q.predicted(0), 2);
+    if (cap)
+      EXPECT_NEAR(predicted, at_dem, 1e-12);
+    else
+      EXPECT_GT(predicted, at_dem + 0.01);
+  }
 }
 
 TEST(QuietPoints, CheckEveryForcesADemUpdate) {
