@@ -151,7 +151,7 @@ bool QuietPoints::accumulate(std::size_t point, const Mat3& dF) {
   }
   if (!spec_.enabled)
     return true;
-  if (spec_.cap_friction)
+  if (spec_.cap_friction && r.yielding != 0.0)
     predicted_[point] = capped_friction(
         predicted_[point], mobilised_sin_friction(anchor_[point], dimension_), dimension_);
   const double strain = (pending_[point] - Mat3::Identity()).norm();
@@ -224,6 +224,8 @@ void QuietPoints::measure_moduli(std::size_t point, const Mat3& stress) {
     r.bulk = bulk;
   if (std::isfinite(shear) && shear > 0.0 && shear <= r.wave_modulus)
     r.shear = shear;
+  if (e.deviatoric.norm() >= kMeasurablePart * size)
+    r.yielding = std::isfinite(shear) && shear <= 0.0 ? 1.0 : 0.0;
 }
 
 void QuietPoints::save_row(std::size_t point, double* v) const {
@@ -231,9 +233,9 @@ void QuietPoints::save_row(std::size_t point, double* v) const {
   std::copy(anchor_[point].data(), anchor_[point].data() + 9, v + 9);
   std::copy(predicted_[point].data(), predicted_[point].data() + 9, v + 18);
   const Row& r = row(point);
-  const double rest[] = {r.bulk,          r.shear,        r.tolerance,
-                         r.quiet_updates, r.wave_modulus, r.continuum};
-  std::copy(rest, rest + 6, v + 27);
+  const double rest[] = {r.bulk,         r.shear,     r.tolerance, r.quiet_updates,
+                         r.wave_modulus, r.continuum, r.yielding};
+  std::copy(rest, rest + 7, v + 27);
 }
 
 void QuietPoints::restore_row(std::size_t point, const double* v) {
@@ -247,6 +249,7 @@ void QuietPoints::restore_row(std::size_t point, const double* v) {
   r.quiet_updates = v[30];
   r.wave_modulus = v[31];
   r.continuum = v[32];
+  r.yielding = v[33];
 }
 
 }  // namespace mpm_lig::coupling

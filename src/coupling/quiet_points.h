@@ -14,9 +14,10 @@ struct QuietSpec {
   double tolerance = 1e-4;  //!< |F_pending - 1| below which a point's stress is predicted
   double max_error = 0.02;  //!< prediction error (relative to |σ|) that tightens a tolerance
   int check_every = 50;     //!< a point quiet this many updates in a row runs DEM (a check)
-  //! A prediction never mobilises more friction than the point's last DEM answer: a yielding
-  //! packing's secant (kept from before it yielded) would carry its stress past what the grains
-  //! hold (docs/dem_work.md §10).
+  //! A yielding point's prediction never mobilises more friction than its last DEM answer: the
+  //! secant it keeps from before it yielded would carry its stress past what the grains hold
+  //! (docs/dem_work.md §10). A point yields while its last measurable shear secant was not a
+  //! stiffness (its deviator did not grow along its deviatoric strain).
   bool cap_friction = false;
 };
 
@@ -95,8 +96,9 @@ extern const QuietStatField kQuietStatFields[12];
 class QuietPoints {
  public:
   //! Per-point values in a checkpoint row: pending (9), anchor stress (9), predicted (9),
-  //! bulk, shear, tolerance, quiet updates in a row, wave modulus, still continuum (1 or 0).
-  static constexpr int kValues = 33;
+  //! bulk, shear, tolerance, quiet updates in a row, wave modulus, still continuum (1 or 0),
+  //! yielding (1 or 0).
+  static constexpr int kValues = 34;
 
   //! `points` points of a `dimension`-D packing; `stress_floor` [Pa] keeps relative errors of
   //! points near zero stress finite.
@@ -142,6 +144,7 @@ class QuietPoints {
     double quiet_updates = 0.0;  //!< predicted updates since the last DEM update
     double wave_modulus = 0.0;   //!< the packing's M: the largest modulus accepted
     double continuum = 0.0;      //!< 1 until the point switches to DEM (continuum start)
+    double yielding = 0.0;       //!< 1 while its last measurable shear secant was refused
   };
   Row& row(std::size_t point) { return rows_[point]; }
   const Row& row(std::size_t point) const { return rows_[point]; }

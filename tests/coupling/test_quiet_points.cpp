@@ -164,26 +164,35 @@ TEST(CappedFriction, ScalesTheDeviatorToTheLimitAndKeepsTheRest) {
   EXPECT_EQ(capped_friction(tension, 0.1, 2), tension);
 }
 
-// With cap_friction a quiet point's prediction under growing shear mobilises no more friction
-// than its last DEM answer; without it the elastic secant carries it past that.
-TEST(QuietPoints, CappedPredictionStopsAtTheLastDemFriction) {
+// With cap_friction a yielding quiet point (its last DEM update did not raise its deviator along
+// its shear) is predicted at no more friction than that update's answer; without the cap the
+// secant it kept carries it past. A hardening point (its deviator grew) is not capped.
+TEST(QuietPoints, CappedPredictionStopsAtTheLastDemFrictionOnceYielding) {
   Mat3 shear = Mat3::Identity();  // x shortens, y lengthens: the anchor's deviator grows
   shear(0, 0) = 1.0 - 2e-4;
   shear(1, 1) = 1.0 + 2e-4;
+  const double at_dem = sin_friction(anchor(), 2);
   for (const bool cap : {false, true}) {
-    QuietSpec s = spec(1e-2, 0.02, 50);
-    s.cap_friction = cap;
-    QuietPoints q;
-    q.start(1, s, 2, 1e3);
-    q.set_packing(0, anchor(), kWaveModulus, 0.0);
-    const double at_dem = sin_friction(anchor(), 2);
-    ASSERT_FALSE(q.accumulate(0, shear));
-    const double predicted = sin_friction(q.predicted(0), 2);
-    if (cap)
-      EXPECT_NEAR(predicted, at_dem, 1e-12);
-    else
-      EXPECT_GT(predicted, at_dem + 0.01);
+    for (const bool yielding : {false, true}) {
+      QuietSpec s = spec(1e-3, 0.02, 50);  // quiet, and large enough to measure moduli on
+      s.cap_friction = cap;
+      QuietPoints q;
+      q.start(1, s, 2, 1e3);
+      q.set_packing(0, anchor(), kWaveModulus, 0.0);
+      ASSERT_FALSE(q.accumulate(0, shear));
+      // The DEM's answer to that increment: the same stress (yielding) or the linear soil's.
+      const Mat3 dem = yielding ? anchor() : linear_soil(anchor(), shear, kBulk, kShear);
+      q.after_dem(0, dem);
+      ASSERT_FALSE(q.accumulate(0, shear));
+      const double predicted = sin_friction(q.predicted(0), 2);
+      const double last = sin_friction(dem, 2);
+      if (cap && yielding)
+        EXPECT_NEAR(predicted, last, 1e-12);
+      else
+        EXPECT_GT(predicted, last + 0.01) << cap << yielding;
+    }
   }
+  EXPECT_GT(at_dem, 0.3);
 }
 
 TEST(QuietPoints, CheckEveryForcesADemUpdate) {
