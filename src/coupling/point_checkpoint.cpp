@@ -10,11 +10,14 @@
 namespace mpm_lig::coupling {
 namespace {
 
-//! One named field of PointCheckpoint: its width and where its values live.
+//! One named field of PointCheckpoint: its width and where its values live. A field that
+//! gained values at its end also reads the narrower rows earlier builds wrote (`oldest_width`),
+//! the values they lack zero.
 struct Field {
   const char* name;
   std::size_t width;
   std::function<double*(PointCheckpoint&)> at;
+  std::size_t oldest_width = 0;  //!< 0: only `width`
 };
 
 //! The fields in their order on disk; the RVE's state is kRveStateFields, the table a moving
@@ -27,8 +30,9 @@ std::vector<Field> make_fields() {
   for (const RveStateField& f : kRveStateFields)
     fields.push_back({f.name, f.width, [at = f.at](PointCheckpoint& p) { return at(p.rve); }});
   fields.push_back({"dem_work", DemWork::kValues, [](PointCheckpoint& p) { return p.work; }});
+  // 33 before the yielding flag (cap_friction) was added.
   fields.push_back(
-      {"quiet_points", QuietPoints::kValues, [](PointCheckpoint& p) { return p.quiet; }});
+      {"quiet_points", QuietPoints::kValues, [](PointCheckpoint& p) { return p.quiet; }, 33});
   fields.push_back({"steady_flow", SteadyFlow::kValues, [](PointCheckpoint& p) { return p.flow; }});
   return fields;
 }
@@ -101,11 +105,13 @@ std::vector<double> read_points(const materials::CheckpointReader& in, std::size
     if (!in.has(f.name))
       throw mismatch(std::string("no field '") + f.name + "'");
     const std::vector<double> values = in.read(f.name);
-    if (values.size() != points * f.width)
+    const bool older = f.oldest_width > 0 && values.size() == points * f.oldest_width;
+    const std::size_t written = older ? f.oldest_width : f.width;
+    if (values.size() != points * written)
       throw std::runtime_error(in.describe() + " holds " + std::to_string(values.size() / f.width) +
                                " DEM points, the case has " + std::to_string(points));
     for (std::size_t p = 0; p < points; ++p)
-      std::copy_n(values.data() + p * f.width, f.width, rows.data() + p * width + offset);
+      std::copy_n(values.data() + p * written, written, rows.data() + p * width + offset);
     offset += f.width;
   }
   return rows;

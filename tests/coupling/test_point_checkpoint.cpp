@@ -56,6 +56,34 @@ std::string refusal(const Store& store, std::size_t points) {
   return "";
 }
 
+// A checkpoint of a build before the quiet points' yielding flag (33 values a point) resumes:
+// its values in place, the flag not yielding.
+TEST(PointCheckpoint, QuietRowsOfTheEarlierWidthReadWithTheNewValueZero) {
+  std::vector<double> rows;
+  pack(sample(1.5), rows);
+  pack(sample(-2.25), rows);
+  Store store;
+  write_points(store, rows);
+  std::vector<double>& quiet = store.arrays.at("quiet_points");
+  ASSERT_EQ(quiet.size(), 2u * QuietPoints::kValues);
+  std::vector<double> older;
+  for (int p = 0; p < 2; ++p)
+    older.insert(older.end(), quiet.begin() + p * QuietPoints::kValues,
+                 quiet.begin() + p * QuietPoints::kValues + 33);
+  quiet = older;
+  const std::vector<double> back = read_points(store, 2);
+  for (int p = 0; p < 2; ++p) {
+    const PointCheckpoint want = sample(p == 0 ? 1.5 : -2.25);
+    const PointCheckpoint got = unpack(back.data() + p * point_checkpoint_width());
+    for (int k = 0; k < 33; ++k)
+      EXPECT_EQ(got.quiet[k], want.quiet[k]) << p << " " << k;
+    EXPECT_EQ(got.quiet[33], 0.0);
+    EXPECT_EQ(got.flow[0], want.flow[0]);
+  }
+  quiet.resize(2u * 32);  // neither width: refused
+  EXPECT_NE(refusal(store, 2).find("holds"), std::string::npos) << refusal(store, 2);
+}
+
 TEST(PointCheckpoint, NamedArraysRoundTripEveryField) {
   std::vector<double> rows;
   pack(sample(1.5), rows);
