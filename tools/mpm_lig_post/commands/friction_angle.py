@@ -31,51 +31,56 @@ from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa
 STRESS_COLUMNS = ("s_xx", "s_yy", "s_zz", "s_xy", "s_xz", "s_yz")
 
 
-def peak_state(run_dir):
-    summary = read_json(f"{run_dir}/summary.json")
-    if "dimension" not in summary:
-        raise InputError(f"{run_dir}/summary.json: missing key 'dimension'")
-    history_path = f"{run_dir}/history.csv"
-    table = read_history(history_path)
-    require_columns(table, STRESS_COLUMNS, history_path)
-    s1, s3 = principal_stresses(table, summary["dimension"])
+class ElementRun:
+    """One element test's summary.json and history.csv, read once, with its principal
+    stresses."""
+
+    def __init__(self, run_dir):
+        self.summary = read_json(f"{run_dir}/summary.json")
+        if "dimension" not in self.summary:
+            raise InputError(f"{run_dir}/summary.json: missing key 'dimension'")
+        self.history_path = f"{run_dir}/history.csv"
+        self.table = read_history(self.history_path)
+        require_columns(self.table, STRESS_COLUMNS, self.history_path)
+        self.s1, self.s3 = principal_stresses(self.table, self.summary["dimension"])
+
+    def axial_strain(self):
+        """Each row's axial strain: the most compressive of e_xx, e_yy, e_zz, compression
+        positive."""
+        require_columns(self.table, ("e_xx", "e_yy", "e_zz"), self.history_path)
+        # Strains are tension positive; a dilating sample's lateral strain may exceed the axial
+        # one.
+        return -np.min([self.table["e_xx"], self.table["e_yy"], self.table["e_zz"]], axis=0)
+
+
+def peak_state(run):
+    """(stress ratio, σ1, σ3) at the row of largest stress ratio."""
+    s1, s3 = run.s1, run.s3
     k = peak_ratio_row(s1, s3)
     if k is None:
-        raise InputError(f"{history_path}: no loaded state")
-    best = ((s1[k] - s3[k]) / (s1[k] + s3[k]), s1[k], s3[k])
-    return summary, best
+        raise InputError(f"{run.history_path}: no loaded state")
+    return (s1[k] - s3[k]) / (s1[k] + s3[k]), s1[k], s3[k]
 
 
-def axial_and_strains(run_dir):
-    """(summary, table, axial strain per row, history path) of a run."""
-    summary = read_json(f"{run_dir}/summary.json")
-    history_path = f"{run_dir}/history.csv"
-    table = read_history(history_path)
-    require_columns(table, STRESS_COLUMNS + ("e_xx", "e_yy", "e_zz"), history_path)
-    # Strains are tension positive; a dilating sample's lateral strain may exceed the axial one.
-    axial = -np.min([table["e_xx"], table["e_yy"], table["e_zz"]], axis=0)
-    return summary, table, axial, history_path
-
-
-def volume_at(run_dir, strains):
+def volume_at(run, strains):
     """Volumetric strain (dilation positive) at each axial strain of `strains`."""
-    _, table, axial, history_path = axial_and_strains(run_dir)
-    volume = table["e_xx"] + table["e_yy"] + table["e_zz"]
+    axial = run.axial_strain()
+    volume = run.table["e_xx"] + run.table["e_yy"] + run.table["e_zz"]
     if max(strains) > axial.max() + 1e-9:  # the last row's strain, to its rounding
-        raise InputError(f"{history_path}: --volume-at {max(strains):g} beyond the largest "
+        raise InputError(f"{run.history_path}: --volume-at {max(strains):g} beyond the largest "
                          f"axial strain {axial.max():.4g}")
     if np.any(np.diff(axial) < 0):
-        raise InputError(f"{history_path}: the axial strain does not grow monotonically")
+        raise InputError(f"{run.history_path}: the axial strain does not grow monotonically")
     return [float(np.interp(e, axial, volume)) for e in strains]
 
 
-def residual_angle(run_dir, low, high):
+def residual_angle(run, low, high):
     """Mean mobilised friction angle [deg] over the rows with axial strain in [low, high]."""
-    summary, table, axial, history_path = axial_and_strains(run_dir)
-    s1, s3 = principal_stresses(table, summary["dimension"])
+    axial = run.axial_strain()
+    s1, s3 = run.s1, run.s3
     rows = (axial >= low) & (axial <= high) & (s1 + s3 > 0)
     if not rows.any():
-        raise InputError(f"{history_path}: no row with axial strain in [{low:g}, {high:g}] "
+        raise InputError(f"{run.history_path}: no row with axial strain in [{low:g}, {high:g}] "
                          f"(largest {axial.max():.4g})")
     ratio = (s1[rows] - s3[rows]) / (s1[rows] + s3[rows])
     return float(np.degrees(np.arcsin(np.clip(ratio, -1.0, 1.0))).mean())
@@ -95,12 +100,13 @@ def main():
         raise InputError(f"--residual {args.residual[0]:g} {args.residual[1]:g}: expected "
                          "0 <= A < B < 1 (axial strains)")
     s_points, t_points, rows = [], [], []
-    for run in args.runs:
-        summary, (ratio, s1, s3) = peak_state(run)
+    for run_dir in args.runs:
+        run = ElementRun(run_dir)
+        ratio, s1, s3 = peak_state(run)
         s, t = 0.5 * (s1 + s3), 0.5 * (s1 - s3)
         s_points.append(s)
         t_points.append(t)
-        rows.append({"run": run, "test": summary.get("test"), "sigma1": s1, "sigma3": s3,
+        rows.append({"run": run_dir, "test": run.summary.get("test"), "sigma1": s1, "sigma3": s3,
                      "mobilised_friction_deg": math.degrees(math.asin(ratio))})
         if args.residual:
             rows[-1]["residual_friction_deg"] = residual_angle(run, *args.residual)
