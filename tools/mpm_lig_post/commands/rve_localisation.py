@@ -61,17 +61,23 @@ def nearest_image(d, sides):
     return d - np.round(fractions) @ sides.T
 
 
-def cell_deformation(x0, x1, sides0, sides1, cutoff):
-    """F of the cell and each grain's non-affine motion (n x 2, nearest image). Of the cell
-    basis changes the RVE may have made between the snapshots, the one under which
-    neighbouring grains (closer than `cutoff` in the first) stay closest to their affine
-    separation: a wrong one maps them a cell's width apart."""
+def neighbour_pairs(x0, sides0, cutoff):
+    """(i, j, d) of every pair of grains closer than `cutoff` in the first snapshot, i < j,
+    d = x0[j] - x0[i] at its nearest image."""
     i, j = np.triu_indices(len(x0), 1)
-    close = np.linalg.norm(nearest_image(x0[j] - x0[i], sides0), axis=1) < cutoff
+    d = nearest_image(x0[j] - x0[i], sides0)
+    close = np.linalg.norm(d, axis=1) < cutoff
     if not close.any():
         raise InputError(f"no two grains closer than {cutoff:g} m in the first snapshot")
-    i, j = i[close], j[close]
-    before = nearest_image(x0[j] - x0[i], sides0)
+    return i[close], j[close], d[close]
+
+
+def cell_deformation(x0, x1, sides0, sides1, pairs):
+    """F of the cell and each grain's non-affine motion (n x 2, nearest image). Of the cell
+    basis changes the RVE may have made between the snapshots, the one under which
+    neighbouring grains (`pairs`) stay closest to their affine separation: a wrong one maps
+    them a cell's width apart."""
+    i, j, before = pairs
     after = nearest_image(x1[j] - x1[i], sides1)
     best = None
     for m in BASIS_CHANGES:
@@ -94,19 +100,25 @@ def local_shear(x0, x1, radii, sides0, sides1, reach):
     """(gamma of each grain, gamma of the cell) between two snapshots of one RVE."""
     if len(x0) != len(x1) or not np.allclose(radii[0], radii[1]):
         raise InputError("the two snapshots hold different grains")
-    cutoff = reach * 2.0 * radii[0].mean()
-    F, u = cell_deformation(x0, x1, sides0, sides1, cutoff)
+    pairs = neighbour_pairs(x0, sides0, reach * 2.0 * radii[0].mean())
+    F, u = cell_deformation(x0, x1, sides0, sides1, pairs)
+    # Each grain's neighbours from the pairs, both ways, in the order of their index.
+    i, j, d = pairs
+    owner = np.concatenate([i, j])
+    other = np.concatenate([j, i])
+    offset = np.concatenate([d, -d])
+    order = np.lexsort((other, owner))
+    owner, other, offset = owner[order], other[order], offset[order]
+    starts = np.searchsorted(owner, np.arange(len(x0) + 1))
     gamma = np.zeros(len(x0))
-    for i in range(len(x0)):
-        d0 = nearest_image(x0 - x0[i], sides0)
-        near = np.linalg.norm(d0, axis=1) < cutoff
-        near[i] = False
-        if near.sum() < 3:
-            raise InputError(f"grain {i}: fewer than 3 grains within {reach:g} diameters")
-        A = d0[near]
-        B = A @ F.T + nearest_image(u[near] - u[i], sides1)
+    for k in range(len(x0)):
+        near = slice(starts[k], starts[k + 1])
+        if starts[k + 1] - starts[k] < 3:
+            raise InputError(f"grain {k}: fewer than 3 grains within {reach:g} diameters")
+        A = offset[near]
+        B = A @ F.T + nearest_image(u[other[near]] - u[k], sides1)
         local = np.linalg.lstsq(A, B, rcond=None)[0].T
-        gamma[i] = shear(local)
+        gamma[k] = shear(local)
     return gamma, float(shear(F))
 
 
