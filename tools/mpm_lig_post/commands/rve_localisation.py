@@ -171,11 +171,12 @@ def main():
         if not os.path.isdir(d):
             raise InputError(f"{d}: not a folder")
     rows, fields = {}, {}
+    for d in runs:  # every run measured before anything is printed or written
+        rows[d], fields[d] = measure(d, args.rve, args.steps, args.reach)
     print("| run | increments | cell gamma | mean grain gamma | half-share fraction | "
           "share of the top 10 % |")
     print("|---|---|---|---|---|---|")
     for d in runs:
-        rows[d], fields[d] = measure(d, args.rve, args.steps, args.reach)
         r = rows[d]
         print(f"| {d} | {r['steps'][0]}-{r['steps'][1]} | {r['cell_shear']:.3f} | "
               f"{r['mean_shear']:.3f} | {r['half_share_fraction']:.3f} | "
