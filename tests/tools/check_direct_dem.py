@@ -4,6 +4,8 @@
 usage: check_direct_dem.py bad WORK      bad input: exit 2, the key named, nothing created;
                                          direct_dem_compare.py against a multiscale run
        check_direct_dem.py affine        coarse-grained strain of an affinely deformed packing
+       check_direct_dem.py cells         the grains' own volume (Voronoi cells between the
+                                         side planes) on lattices with closed-form areas
        check_direct_dem.py run WORK      a real run of tests/tools/direct_dem_tiny.json (100
                                          discs, to s/B = 0.12, two probes) and what it must
                                          reproduce
@@ -394,6 +396,11 @@ def probes_checked(out, s, prep):
               f"probe {name}: F = I at the start of loading, det F > 0 after")
         check(np.all(r["p"] > 0) and np.all(r["grains"] > 3) and np.all(r["contacts"] > 0),
               f"probe {name}: compressed grains in its window ({r['grains'][0]} grains)")
+        cells = r["cells_volumetric"]
+        check(cells[0] == 0.0 and np.all(np.isfinite(cells)) and
+              np.abs(cells).max() < 0.2,
+              f"probe {name}: its grains' cells unchanged at the start of loading, finite after "
+              f"(largest |ln| {np.abs(cells).max():.4f})")
     # each probe's own window: wedge --probe-window's 3 d, far its own 2.5 d
     summary = json.load(open(os.path.join(out, "summary.json")))
     d = summary["B"] / summary["B_over_d"]
@@ -630,12 +637,55 @@ def settle_damping(work, reference):
     check(rows[0] != rows[1], "the resettled block's loading starts from its new state")
 
 
+def cells():
+    """Voronoi cells of a square lattice of grains between the side planes, where every cell is
+    the lattice's square: beside a plane (mirrored), under a uniform stretch, and across a slip
+    line that opens, where the least-squares F of the same grains misreads the volume."""
+    from mpm_lig_post.direct_dem.cells import cells_volumetric, walled_areas
+    from mpm_lig_post.direct_dem.probes import members, window_F
+
+    a, columns, rows = 0.01, 12, 30  # spacing; the planes at x = 0 and columns * a
+    width = columns * a
+    grid = np.array([[(i + 0.5) * a, (j + 0.5) * a] for j in range(rows) for i in range(columns)])
+    radii = np.full(len(grid), 0.45 * a)
+    reach = 4.0 * radii.max()
+    start = walled_areas(grid, width, reach)
+    inner = (grid[:, 1] > a) & (grid[:, 1] < (rows - 1) * a)  # the top and bottom rows are open
+    beside = inner & ((grid[:, 0] < a) | (grid[:, 0] > width - a))
+    check(np.allclose(start[inner], a * a, rtol=1e-12, atol=0),
+          f"every cell of the lattice is a^2, the columns beside the planes too (beside: "
+          f"{np.nanmin(start[beside]) / a ** 2:.6f} to {np.nanmax(start[beside]) / a ** 2:.6f} a^2)")
+    # a window touching the plane x = 0, stretched uniformly about the origin (the plane stays)
+    window = members(grid, np.array([0.04, 0.15]), 0.08)
+    stretch = 1.03
+    now = walled_areas(grid * stretch, width * stretch, reach * stretch)
+    got = cells_volumetric(start, now, radii, window)
+    check(abs(got - 2.0 * math.log(stretch)) < 1e-12,
+          f"a uniform stretch by {stretch}: ln of the cells {got:.12f} = 2 ln {stretch}")
+    # a slip line through the window's middle that opens by delta: the grains above it move up
+    delta = 0.2 * a
+    centre, side = np.array([0.06, 0.15]), 0.1
+    window = members(grid, centre, side)
+    opened = grid + np.where(grid[:, 1:2] > centre[1], [0.0, delta], [0.0, 0.0])
+    got = cells_volumetric(start, walled_areas(opened, width, reach), radii, window)
+    exact = math.log(1.0 + delta / side)  # the window's area grows by its width times delta
+    fitted = math.log(np.linalg.det(window_F(grid[window], opened[window])))
+    check(abs(got - exact) < 1e-12,
+          f"a slip line opening by {delta / a:g} a: ln of the cells {got:.6f} = ln(1 + delta / "
+          f"side) {exact:.6f}")
+    check(fitted > 1.3 * exact,
+          f"the same grains' least-squares det F reads {fitted / exact:.2f} times the opening "
+          f"(ln det F {fitted:.6f}): a jump is not an affine map")
+
+
 def main():
     mode = sys.argv[1]
     if mode == "bad":
         bad(sys.argv[2])
     elif mode == "affine":
         affine()
+    elif mode == "cells":
+        cells()
     elif mode == "run":
         real(sys.argv[2])
     elif mode == "resume":

@@ -19,7 +19,9 @@ one of p. It then prints, per probe, the
 grains' and the RVEs' largest stress ratio q/p (2D: Mohr-circle radius over in-plane mean
 stress) and where, the RVEs' mean over seeds and its spread, and the mean and largest
 difference of p and of q/p along the path (p over the preparation pressure p0), and with --at
-the grains' p/p0 and q/p beside the RVEs' mean ± std at the rows nearest those s/B; writes
+the grains' p/p0, q/p and volume beside the RVEs' mean ± std at the rows nearest those s/B
+(the grains' volume two ways: ln det F of the window's least-squares F, and where probes.csv
+has it the change of their summed Voronoi cells, cells_volumetric, their own volume); writes
 OUT_DIR/replay.json and OUT_DIR/replay.png (q/p and p/p0 against s/B, grains and RVEs).
 Exit 0 done, 1 an element test failed (its log named), 2 bad input (before anything runs).
 """
@@ -119,6 +121,8 @@ def states_at(grains, rves, p0, at):
                          "grains_p_over_p0": float(grains["p"][k] / p0),
                          "grains_ratio": float(ratio(grains["p"][k], grains["q"][k])),
                          "grains_volumetric": float(g_vol[k]),
+                         "grains_cells_volumetric": float(grains["cells_volumetric"][k])
+                         if "cells_volumetric" in grains else None,
                          "rve_p_over_p0": float(p.mean()), "rve_p_over_p0_std": sample_std(p),
                          "rve_ratio": float(r.mean()), "rve_ratio_std": sample_std(r),
                          "rve_volumetric": float(v.mean()), "rve_volumetric_std": sample_std(v)}
@@ -240,14 +244,16 @@ def print_table(report):
     states = [(name, s) for name, r in report["probes"].items() for s in r["at"].values()]
     if states:
         print("\n| probe | s/B | p / p0, grains | p / p0, RVEs | q/p, grains | q/p, RVEs | "
-              "ln det F, grains | e_vol, RVEs |")
-        print("|---|---|---|---|---|---|---|---|")
+              "ln det F, grains | ln of their cells | e_vol, RVEs |")
+        print("|---|---|---|---|---|---|---|---|---|")
         for name, s in states:
+            cells = s["grains_cells_volumetric"]
             print(f"| {name} | {s['s_over_B']:.3f} | {s['grains_p_over_p0']:.2f} | "
                   f"{s['rve_p_over_p0']:.2f} ± {s['rve_p_over_p0_std']:.2f} | "
                   f"{s['grains_ratio']:.3f} | {s['rve_ratio']:.3f} ± {s['rve_ratio_std']:.3f} | "
-                  f"{s['grains_volumetric']:.4f} | {s['rve_volumetric']:.4f} ± "
-                  f"{s['rve_volumetric_std']:.4f} |")
+                  f"{s['grains_volumetric']:.4f} | "
+                  f"{'–' if cells is None else format(cells, '.4f')} | "
+                  f"{s['rve_volumetric']:.4f} ± {s['rve_volumetric_std']:.4f} |")
 
 
 def picture(path, probes, histories, names, report, p0, dpi, free):
@@ -260,7 +266,10 @@ def picture(path, probes, histories, names, report, p0, dpi, free):
         g = {k: v[:rows] for k, v in probes[name].items()}
         s = g["s_over_B"]
         axes[0][j].plot(s, ratio(g["p"], g["q"]), "k-", lw=1.6, label="grains")
-        axes[1][j].plot(s, volumetric(g) if free else g["p"] / p0, "k-", lw=1.6, label="grains")
+        axes[1][j].plot(s, volumetric(g) if free else g["p"] / p0, "k-", lw=1.6,
+                        label="grains (ln det F)" if free else "grains")
+        if free and "cells_volumetric" in g:
+            axes[1][j].plot(s, g["cells_volumetric"], "k--", lw=1.2, label="grains (cells)")
         for seed, h in histories[name].items():
             n = min(rows, len(h["p"]))
             axes[0][j].plot(s[:n], ratio(h["p"][:n], h["q"][:n]), lw=0.9, label=f"RVE {seed}")
@@ -271,6 +280,8 @@ def picture(path, probes, histories, names, report, p0, dpi, free):
     axes[0][0].set_ylabel("q / p")
     axes[1][0].set_ylabel("volumetric strain" if free else "p / p0")
     axes[0][0].legend(fontsize=7)
+    if free:
+        axes[1][0].legend(fontsize=7)
     figures.save(fig, path, dpi)
 
 

@@ -8,6 +8,7 @@ import os
 
 import numpy as np
 
+from mpm_lig_post.direct_dem.cells import cells_volumetric, walled_areas
 from mpm_lig_post.errors import InputError
 from mpm_lig_post.love_weber import invariants, window_stress
 
@@ -17,13 +18,16 @@ PLACES = {"wedge": (0.25, 0.35),     # under the footing, the rigid wedge
           "band": (0.65, 0.65),      # below the footing's edge, where the slip band runs
           "passive": (1.3, 0.3),     # beside the footing, the passive zone that heaves
           "far": (2.4, 2.0)}         # far away, the soil that hardly moves
+# cells_volumetric: ln of the window's grains' summed Voronoi cells against the start of
+# loading (cells.py), the grains' own volume change; det F of the least-squares F is not it.
 COLUMNS = ("probe", "step", "time", "s_over_B", "F11", "F12", "F21", "F22", "s_xx", "s_yy",
-           "s_xy", "p", "q", "grains", "contacts")
+           "s_xy", "p", "q", "grains", "contacts", "cells_volumetric")
 
 
 # The numeric columns a reader of probes.csv takes (replay_direct_dem, mpm_probes).
 READ_COLUMNS = ("s_over_B", "time", "F11", "F12", "F21", "F22", "s_xx", "s_yy", "s_xy", "p",
                  "q")
+OPTIONAL_COLUMNS = ("cells_volumetric",)
 
 
 def read_probes(run):
@@ -44,9 +48,11 @@ def read_probes(run):
                              f"{len(header)}")
         probes.setdefault(row[0], []).append(row)
     out = {}
+    # cells_volumetric is read where the file has it (probes.csv of earlier tools has not)
+    read = READ_COLUMNS + tuple(c for c in OPTIONAL_COLUMNS if c in header)
     for name, got in probes.items():
         try:
-            table = {c: np.array([float(r[header.index(c)]) for r in got]) for c in READ_COLUMNS}
+            table = {c: np.array([float(r[header.index(c)]) for r in got]) for c in read}
         except ValueError as e:
             raise InputError(f"{path}: probe {name}: {e}") from None
         if len(got) < 2:
@@ -148,10 +154,17 @@ class Probes:
         self.run = run
         self.list = parse(names)
         self.side = window_side(run.pb, run.args)
+        self.start_cells = None  # every grain's cell at the start of loading, on first use
 
     def header(self, path):
         with open(path, "w") as f:
             f.write(",".join(COLUMNS) + "\n")
+
+    def file_columns(self, path):
+        """The columns of probes.csv as its header has them: a run resumed from a checkpoint
+        of an earlier tool, whose file has no cells_volumetric, goes on without it."""
+        with open(path) as f:
+            return f.readline().strip().split(",")
 
     def record(self, s):
         """One row per probe for the state now (s the settlement)."""
@@ -166,6 +179,12 @@ class Probes:
         first, second, force = run.contacts_now()
         contacts = (np.array([index[int(i)] for i in first], int),
                     np.array([index[int(i)] for i in second], int), force)
+        reach = 4.0 * float(r.max())
+        if self.start_cells is None:
+            self.start_cells = walled_areas(run.ref_xy, run.lx, reach)
+        start = np.full(len(ids), np.nan)
+        start[known] = self.start_cells[where_ref[known]]
+        now = walled_areas(xy, run.lx, reach)
         rows = []
         for name, (centre, side) in windows(pb, self.list, self.side, run.lx, run.ly).items():
             inside = known & members(np.nan_to_num(ref, nan=-1e30), centre, side)
@@ -175,11 +194,15 @@ class Probes:
                                   extra["mass"], extra["velocity"])
             p, q = invariants(sigma)
             touching = int(np.count_nonzero(inside[contacts[0]] | inside[contacts[1]]))
-            rows.append([name, run.steps, run.load_steps * pb["dt"], s / pb["B"], F[0, 0],
-                         F[0, 1], F[1, 0], F[1, 1], sigma[0, 0], sigma[1, 1], sigma[0, 1], p, q,
-                         int(inside.sum()), touching])
-        with open(os.path.join(run.out, "probes.csv"), "a") as f:
+            values = [name, "%d" % run.steps] + \
+                ["%.12g" % v for v in (run.load_steps * pb["dt"], s / pb["B"], F[0, 0], F[0, 1],
+                                       F[1, 0], F[1, 1], sigma[0, 0], sigma[1, 1],
+                                       sigma[0, 1], p, q)] + \
+                ["%d" % int(inside.sum()), "%d" % touching,
+                 "%.12g" % cells_volumetric(start, now, r, inside)]
+            rows.append(dict(zip(COLUMNS, values)))
+        path = os.path.join(run.out, "probes.csv")
+        columns = self.file_columns(path)
+        with open(path, "a") as f:
             for row in rows:
-                f.write(",".join(row[0:1] + ["%d" % row[1]] +
-                                 ["%.12g" % v for v in row[2:13]] +
-                                 ["%d" % v for v in row[13:]]) + "\n")
+                f.write(",".join(row[c] for c in columns) + "\n")
