@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """The volume of a direct-DEM probe window's grains, two ways: the least-squares det F that
-probes.csv records, and the sum of the grains' Voronoi cells (grains beside a wall or the free
-surface, whose cells are open or larger than 2.5 pi r^2, left out), at every grain snapshot.
+probes.csv records, and the sum of the grains' Voronoi cells, at every grain snapshot. The
+grains near a side plane are mirrored across it, so that their cells end at the plane (without
+the mirror a window beside the footing's axis, x = 0, counts the open space beyond the plane
+in its cells); grains whose cells are still open or larger than 2.5 pi r^2 (the free surface)
+are left out.
 
 usage: docs/study/cell_angle/window_voronoi.py RUN_DIR   (a tools/direct_dem.py run with
 --probes and --snapshots; the numbers of docs/direct_dem.md "Can the RVE localise?")
@@ -11,41 +14,31 @@ import os
 import sys
 
 import numpy as np
-from scipy.spatial import Voronoi
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
                                 "tools"))
+from mpm_lig_post.direct_dem.cells import walled_areas  # noqa: E402
 from mpm_lig_post.direct_dem.probes import members, window_F  # noqa: E402
 from mpm_lig_post.vtk_legacy import read_polydata  # noqa: E402
-
-
-def voronoi_areas(xy):
-    """Area of each point's Voronoi cell; nan where the cell is open."""
-    v = Voronoi(xy)
-    areas = np.full(len(xy), np.nan)
-    for i, region in enumerate(v.point_region):
-        corners = v.regions[region]
-        if corners and -1 not in corners:
-            x, y = v.vertices[corners].T
-            areas[i] = 0.5 * abs(np.dot(x, np.roll(y, 1)) - np.dot(y, np.roll(x, 1)))
-    return areas
 
 
 def main(run):
     summary = json.load(open(os.path.join(run, "summary.json")))
     B = summary["B"]
-    _, ly = summary["block"]
+    lx, ly = summary["block"]
     reference = np.load(os.path.join(run, "reference.npz"))["xy"]
-    start = voronoi_areas(reference)
     ds_over_B = summary["footing_speed"] * summary["time_step"] / B
     folder = os.path.join(run, "snapshots")
+    names = sorted(n for n in os.listdir(folder) if n.endswith("_grains.vtk"))
+    reach = 4.0 * read_polydata(os.path.join(folder, names[0])).field("radius").max()
+    start = walled_areas(reference, lx, reach)
     print("| s/B | window | grains (inner) | ln det F, least squares | ln of the Voronoi sum | "
           "grains' ln(A/A0): 10th, 50th, 90th percentile |")
     print("|---|---|---|---|---|---|")
-    for name in sorted(n for n in os.listdir(folder) if n.endswith("_grains.vtk")):
+    for name in names:
         grains = read_polydata(os.path.join(folder, name))
         xy, radius = grains.points[:, :2], grains.field("radius")
-        now = voronoi_areas(xy)
+        now = walled_areas(xy, lx, reach)
         closed = 2.5 * np.pi * radius ** 2
         inner = np.isfinite(start) & np.isfinite(now) & (start < closed) & (now < closed)
         s = int(name.split("_")[1]) * ds_over_B
