@@ -12,7 +12,10 @@ usage: check_replay_direct_dem.py WORK RUN MPM_LIG
 - the same with --volume free: the RVE's in-plane deviatoric strain is the probe's, its p the
   grains' within 2 % at every row after the first (its volume follows their stress, not
   det F), and the
-  volumetric strains of both are in the --at state.
+  volumetric strains of both are in the --at state;
+- the same with --volume cells: the RVE's volumetric strain is the grains' own
+  (cells_volumetric) and its deviatoric strain the probe's at every row; a probes.csv without
+  the column (an earlier tool's) refused with exit 2.
 """
 import json
 import os
@@ -122,6 +125,55 @@ def main():
     check(os.path.getsize(os.path.join(out, "replay.png")) > 0, "replay.png drawn")
     check("| far |" in stdout, "the table printed")
     free_volume(work, run, mpm_lig, far)
+    cells_volume(work, run, mpm_lig, far)
+
+
+def deviatoric_gap(history, far, n):
+    """The largest difference between the RVE's in-plane deviatoric Hencky strain and that of
+    the probe's F over the first n rows."""
+    worst = 0.0
+    for k in range(n):
+        F = np.array([[far["F11"][k], far["F12"][k]], [far["F21"][k], far["F22"][k]]])
+        want = hencky_left(F)
+        got = np.array([[history["e_xx"][k], history["e_xy"][k]],
+                        [history["e_xy"][k], history["e_yy"][k]]])
+        worst = max(worst, np.abs((got - np.trace(got) / 2 * np.eye(2)) -
+                                  (want - np.trace(want) / 2 * np.eye(2))).max())
+    return worst
+
+
+def cells_volume(work, run, mpm_lig, far):
+    out = os.path.join(work, "replay_cells")
+    code, _, stderr = tool([TINY, run, "-o", out, "--mpm-lig", mpm_lig, "--probes", "far",
+                            "--seeds", "11", "--volume", "cells"])
+    check(code == 0, f"--volume cells: exit 0 ({stderr.strip()[-200:]})")
+    if code == 0:
+        history = np.genfromtxt(os.path.join(out, "runs", "far_s11", "history.csv"),
+                                delimiter=",", names=True)
+        n = min(len(history), len(far))
+        worst_vol = float(np.max(np.abs(history["e_xx"][:n] + history["e_yy"][:n] -
+                                        far["cells_volumetric"][:n])))
+        check(len(history) == len(far) and worst_vol < 1e-9 and
+              np.abs(far["cells_volumetric"]).max() > 1e-6,
+              f"--volume cells: the RVE's volumetric strain is the grains' cells' at every row "
+              f"(worst {worst_vol:.1e}; theirs up to {np.abs(far['cells_volumetric']).max():.4f})")
+        worst_dev = deviatoric_gap(history, far, n)
+        check(worst_dev < 1e-9, f"--volume cells: the RVE's deviatoric strain is the probe's "
+              f"(worst {worst_dev:.1e})")
+    # an earlier tool's probes.csv, without the column
+    older = os.path.join(work, "older_probes")
+    os.makedirs(older)
+    shutil.copy(os.path.join(run, "summary.json"), older)
+    with open(os.path.join(run, "probes.csv")) as f:
+        lines = [line.rsplit(",", 1)[0] for line in f.read().splitlines()]
+    with open(os.path.join(older, "probes.csv"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    refused = os.path.join(work, "replay_cells_older")
+    code, _, stderr = tool([TINY, older, "-o", refused, "--mpm-lig", mpm_lig, "--probes", "far",
+                            "--seeds", "11", "--volume", "cells"])
+    check(code == 2 and "cells_volumetric" in stderr and not os.path.exists(refused),
+          f"--volume cells on a probes.csv without the column: exit {code}, named, nothing "
+          f"created ({stderr.strip()[:120]})")
 
 
 def free_volume(work, run, mpm_lig, far):
@@ -137,14 +189,7 @@ def free_volume(work, run, mpm_lig, far):
     # row 0 is the RVE's prepared packing, at its own p0: the servo holds p from the first
     # increment on
     worst_p = float(np.max(np.abs(history["p"][1:n] - far["p"][1:n]) / far["p"][1:n]))
-    worst_dev = 0.0
-    for k in range(n):
-        F = np.array([[far["F11"][k], far["F12"][k]], [far["F21"][k], far["F22"][k]]])
-        want = hencky_left(F)
-        got = np.array([[history["e_xx"][k], history["e_xy"][k]],
-                        [history["e_xy"][k], history["e_yy"][k]]])
-        worst_dev = max(worst_dev, np.abs((got - np.trace(got) / 2 * np.eye(2)) -
-                                          (want - np.trace(want) / 2 * np.eye(2))).max())
+    worst_dev = deviatoric_gap(history, far, n)
     check(len(history) == len(far) and worst_p <= 0.02,
           f"--volume free: the RVE's p is the grains' within 2 % at every row after the first ({worst_p:.2%})")
     check(worst_dev < 1e-6, f"--volume free: the RVE's deviatoric strain is the probe's "

@@ -3,7 +3,7 @@
 
 usage: replay_direct_dem.py CASE.json RUN_DIR -o OUT_DIR [--mpm-lig build/mpm_lig]
                             [--probes NAME ...] [--seeds 11 12 13] [--upto S] [--at S ...]
-                            [--volume recorded|free] [--dpi N]
+                            [--volume recorded|free|cells] [--dpi N]
 
 RUN_DIR/probes.csv holds, for each probe (a window of the RVE's size that follows its grains),
 the window's deformation gradient F from the start of loading and its grains' own stress
@@ -15,7 +15,9 @@ increments and sub-step rule, from its own prepared packing. With --volume free 
 only the isochoric part of the window's F and its volume follows the grains' mean stress (the
 path's column p): the RVE's dilatancy and stress ratio beside the grains' on their shear path,
 without the volumetric stiffness that turns a small error of the window's det F into a large
-one of p. It then prints, per probe, the
+one of p. With --volume cells the RVE takes the window's F scaled to its grains' own volume
+(probes.csv's cells_volumetric: det F = exp(cells_volumetric), the isochoric part the
+window's). It then prints, per probe, the
 grains' and the RVEs' largest stress ratio q/p (2D: Mohr-circle radius over in-plane mean
 stress) and where, the RVEs' mean over seeds and its spread, and the mean and largest
 difference of p and of q/p along the path (p over the preparation pressure p0), and with --at
@@ -44,17 +46,23 @@ from mpm_lig_post.tables import read_history, read_json, require_columns  # noqa
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_MPM_LIG = os.path.normpath(os.path.join(HERE, "..", "..", "..", "build", "mpm_lig"))
-def write_path(path, table, rows, free_volume):
-    """The probe's F (and, for a free volume, the grains' mean stress p) as a recorded path."""
-    columns = ("time", "F11", "F12", "F21", "F22") + (("p",) if free_volume else ())
+def write_path(path, table, rows, volume):
+    """The probe's F (and, for a free volume, the grains' mean stress p) as a recorded path;
+    for the cells' volume F scaled so that det F is exp(cells_volumetric)."""
+    columns = ("time", "F11", "F12", "F21", "F22") + (("p",) if volume == "free" else ())
+    values = {c: np.asarray(table[c][:rows], float) for c in columns}
+    if volume == "cells":
+        scale = np.sqrt(np.exp(table["cells_volumetric"][:rows]) / window_det(table)[:rows])
+        for c in ("F11", "F12", "F21", "F22"):
+            values[c] = values[c] * scale
     with open(path, "w") as f:
         f.write("# the deformation gradient of a direct-DEM probe window (replay_direct_dem.py)\n")
         f.write(",".join(columns) + "\n")
         for k in range(rows):
-            f.write(",".join("%.17g" % table[c][k] for c in columns) + "\n")
+            f.write(",".join("%.17g" % values[c][k] for c in columns) + "\n")
 
 
-def path_rows(name, table, upto, free_volume):
+def path_rows(name, table, upto, volume):
     """The probe's rows to replay (to --upto), checked before anything is written: a window
     its grains have torn (det F <= 0) or, for a free volume, one that carries no compression
     cannot be replayed."""
@@ -63,8 +71,14 @@ def path_rows(name, table, upto, free_volume):
     rows = max(rows, 2)
     bad = [(window_det({k: v[:rows] for k, v in table.items()}),
             "det F <= 0: its grains no longer hold together")]
-    if free_volume:
+    if volume == "free":
         bad.append((table["p"][:rows], "p <= 0: its grains carry no compression"))
+    if volume == "cells":
+        if "cells_volumetric" not in table:
+            raise InputError(f"--volume cells: probe {name} has no cells_volumetric (probes.csv "
+                             "of a direct DEM from before it was written: run it again)")
+        bad.append((np.where(np.isfinite(table["cells_volumetric"][:rows]), 1.0, -1.0),
+                    "no closed cells: its grains' volume is not known"))
     for values, why in bad:
         if not np.all(values > 0):
             at = table["s_over_B"][int(np.argmax(~(values > 0)))]
@@ -175,9 +189,10 @@ def main():
     p.add_argument("--upto", type=cli.positive, help="replay rows up to this s/B (default all)")
     p.add_argument("--at", type=cli.non_negative, nargs="+", default=[],
                    help="s/B at which the grains' and the RVEs' p and q/p are set side by side")
-    p.add_argument("--volume", choices=("recorded", "free"), default="recorded",
-                   help="the RVE's volume: the window's det F (recorded, the default) or free, "
-                   "following the grains' mean stress with the isochoric part of F imposed")
+    p.add_argument("--volume", choices=("recorded", "free", "cells"), default="recorded",
+                   help="the RVE's volume: the window's det F (recorded, the default), free, "
+                   "following the grains' mean stress with the isochoric part of F imposed, or "
+                   "cells, its grains' own volume (probes.csv's cells_volumetric)")
     p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
     free = a.volume == "free"
@@ -195,7 +210,7 @@ def main():
     seeds = a.seeds or [int(rve.get("seed", 1)) + k for k in range(3)]
     if len(set(seeds)) != len(seeds):
         raise InputError("--seeds: a seed given twice")
-    rows_of = {name: path_rows(name, probes[name], a.upto, free) for name in names}
+    rows_of = {name: path_rows(name, probes[name], a.upto, a.volume) for name in names}
     out = os.path.abspath(a.output)
     cli.writable_folder(out)
     if os.path.isdir(out) and os.listdir(out):
@@ -209,7 +224,7 @@ def main():
         table, rows = probes[name], rows_of[name]
         grains = {k: v[:rows] for k, v in table.items()}
         path_csv = os.path.join(out, "paths", f"{name}.csv")
-        write_path(path_csv, table, rows, free)
+        write_path(path_csv, table, rows, a.volume)
         histories[name] = {}
         for seed in seeds:
             case_path = os.path.join(out, "cases", f"{name}_s{seed}.json")
