@@ -70,7 +70,7 @@ def grain_pressures(snapshot, ids, xy, radius, area, thickness):
     f = np.column_stack([c["fx"], c["fy"]])
     n = xy[j] - xy[i]
     n /= np.linalg.norm(n, axis=1)[:, None]
-    push = -np.einsum("ij,ij->i", n, f)  # the engine's force is id1's on id2: -n.f pushes
+    push = -np.einsum("ij,ij->i", n, f)  # the force on id1 from id2: -n.f > 0 pushes
     moment = np.zeros(len(xy))
     np.add.at(moment, i, radius[i] * push)
     np.add.at(moment, j, radius[j] * push)
