@@ -90,6 +90,14 @@ def main():
     dets = [np.log(a * d - b * c) for a, b, c, d in F][:len(wedge)]
     check(np.allclose(wedge[:, col["grains_volumetric"]], dets, atol=1e-5),
           "the grains' volumetric strain is ln det F of their window")
+    # ... and their own volume, the cells' column of probes.csv, carried over row for row
+    with open(os.path.join(dem, "probes.csv")) as f:
+        h = f.readline().strip().split(",")
+        cells = [float(r[h.index("cells_volumetric")]) for r in
+                 (line.strip().split(",") for line in f) if r[0] == "wedge"][:len(wedge)]
+    check("grains_cells_volumetric" in col and
+          np.allclose(wedge[:, col["grains_cells_volumetric"]], cells, atol=1e-5),
+          "the grains' own volume change (their cells) carried into mpm_probes.csv")
     check(os.path.getsize(os.path.join(out, "mpm_probes.png")) > 10000, "picture written")
 
 

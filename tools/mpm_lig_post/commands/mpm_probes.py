@@ -14,7 +14,9 @@ points (those whose reference position, position minus displacement, lies in the
 give the volume-weighted mean stress and logarithmic strain, and s/B is the footing's
 settlement at that step over B. Both are set side by side at the grains' rows (the MPM's interpolated in s/B): p / p0, the stress ratio
 q/p (q the radius of Mohr's circle in the plane, as the element tests write it) and the
-volumetric and deviatoric strain (Hencky: the grains' from their window's F). The two
+volumetric and deviatoric strain (Hencky: the grains' from their window's F; where probes.csv
+has it, also the grains' own volume change, the ln of their summed Voronoi cells,
+grains_cells_volumetric in mpm_probes.csv). The two
 "part" at the first s/B where |q/p| differs by more than --ratio-gap (default 0.1) or p by
 more than --pressure-gap p0 (default 0.5). Prints a table; writes OUT_DIR/mpm_probes.json,
 OUT_DIR/mpm_probes.png and OUT_DIR/mpm_probes.csv (the side-by-side rows).
@@ -112,6 +114,8 @@ def compare(grains, mpm, p0, ratio_gap, pressure_gap):
             "grains_ratio": g_ratio, "mpm_ratio": m_ratio, "grains_volumetric": g_vol,
             "mpm_volumetric": m["volumetric"], "grains_deviatoric": g_dev,
             "mpm_deviatoric": m["deviatoric"]}
+    if "cells_volumetric" in grains:
+        rows["grains_cells_volumetric"] = grains["cells_volumetric"][keep]
     summary = {"rows": int(len(s)), "parted_at_s_over_B": first,
                "grains_peak_ratio": float(g_ratio.max()) if len(s) else None,
                "mpm_peak_ratio": float(m_ratio.max()) if len(s) else None,
@@ -201,6 +205,8 @@ def print_table(report):
 def write_rows(path, tables):
     columns = ["s_over_B", "grains_p_over_p0", "mpm_p_over_p0", "grains_ratio", "mpm_ratio",
                "grains_volumetric", "mpm_volumetric", "grains_deviatoric", "mpm_deviatoric"]
+    if all("grains_cells_volumetric" in t for t in tables.values()):
+        columns.append("grains_cells_volumetric")
     with open(path, "w") as f:
         f.write("probe," + ",".join(columns) + "\n")
         for name, t in tables.items():
