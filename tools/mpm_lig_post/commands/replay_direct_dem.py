@@ -64,8 +64,8 @@ def write_path(path, table, rows, volume):
 
 def path_rows(name, table, upto, volume):
     """The probe's rows to replay (to --upto), checked before anything is written: a window
-    its grains have torn (det F <= 0) or, for a free volume, one that carries no compression
-    cannot be replayed."""
+    its grains have torn (det F <= 0), for a free volume one that carries no compression, and
+    for the cells' volume one whose grains' cells are not known cannot be replayed."""
     rows = len(table["time"]) if upto is None else \
         int(np.count_nonzero(table["s_over_B"] <= upto + 1e-9))
     rows = max(rows, 2)
