@@ -33,9 +33,10 @@ from scipy.spatial import cKDTree
 TOOLS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tools")
 sys.path.insert(0, TOOLS)
 from mpm_lig_post.commands.rve_localisation import local_shear, read_snapshot, shear  # noqa: E402
-from mpm_lig_post.direct_dem.cells import voronoi_areas, walled_areas  # noqa: E402
+from mpm_lig_post.direct_dem.cells import closed, voronoi_areas, walled_areas  # noqa: E402
 from mpm_lig_post.direct_dem.probes import members, read_probes  # noqa: E402
 from mpm_lig_post.vtk_legacy import read_polydata  # noqa: E402
+from window_stress import set_p_q, snapshot_contacts  # noqa: E402  (this folder's)
 
 REACH = 2.5  # neighbours within this many mean diameters, as rve_localisation's default
 
@@ -60,24 +61,7 @@ def open_shear(x0, x1, reach_length):
     return gamma
 
 
-def grain_pressures(snapshot, ids, xy, radius, area, thickness):
-    """Each grain's own mean stress, -(1/2) tr of its Love-Weber sum over its Voronoi cell:
-    for a disc the branch to a contact lies along the normal, so only the normal force counts."""
-    c = np.load(snapshot.replace("_grains.vtk", "_contacts.npz"))
-    where = {int(i): k for k, i in enumerate(ids)}
-    i = np.array([where[int(k)] for k in c["id1"]])
-    j = np.array([where[int(k)] for k in c["id2"]])
-    f = np.column_stack([c["fx"], c["fy"]])
-    n = xy[j] - xy[i]
-    n /= np.linalg.norm(n, axis=1)[:, None]
-    push = -np.einsum("ij,ij->i", n, f)  # the force on id1 from id2: -n.f > 0 pushes
-    moment = np.zeros(len(xy))
-    np.add.at(moment, i, radius[i] * push)
-    np.add.at(moment, j, radius[j] * push)
-    return moment / (2.0 * area * thickness)
-
-
-def split(gamma, area0, area1, solid, p0=None, p1=None):
+def split(gamma, area0, area1, solid, pressures=None):
     """The slip grains (the most sheared, carrying half the summed shear) and the matrix."""
     order = np.argsort(gamma)[::-1]
     carried = np.cumsum(gamma[order]) / gamma.sum()
@@ -90,9 +74,8 @@ def split(gamma, area0, area1, solid, p0=None, p1=None):
                "volumetric": float(np.log(area1[mask].sum() / area0[mask].sum())),
                "void_ratio": [float(a[mask].sum() / solid[mask].sum() - 1.0)
                               for a in (area0, area1)]}
-        if p0 is not None:  # the part's mean stress, its grains' weighted by their cells
-            row["p"] = [float(np.sum(p[mask] * a[mask]) / np.sum(a[mask]))
-                        for p, a in ((p0, area0), (p1, area1))]
+        if pressures is not None:  # the part's own mean stress at both snapshots
+            row["p"] = pressures(mask)
         return row
 
     return {"grains": len(gamma), "slip": part(slip), "matrix": part(~slip),
@@ -119,24 +102,31 @@ def grains_mode(run, s0, s1, windows):
     t1, x1, radius, snap1 = nearest(s1)
     lx, reach = summary["block"][0], 4.0 * radius.max()
     a1 = walled_areas(x1, lx, reach)
-    p1 = grain_pressures(snap1, ids, x1, radius, a1, summary["thickness"])
+    states = [(x1, a1, snapshot_contacts(snap1, ids))]
     # The start of loading has no snapshot: its positions are the reference (same order).
     if s0 == 0:
-        t0, x0, a0, p0 = 0.0, reference, walled_areas(reference, lx, reach), None
+        t0, x0, a0 = 0.0, reference, walled_areas(reference, lx, reach)
     else:
         t0, x0, _, snap0 = nearest(s0)
         a0 = walled_areas(x0, lx, reach)
-        p0 = grain_pressures(snap0, ids, x0, radius, a0, summary["thickness"])
-    closed = 2.5 * np.pi * radius ** 2
-    inner = np.isfinite(a0) & np.isfinite(a1) & (a0 < closed) & (a1 < closed)
+        states.insert(0, (x0, a0, snapshot_contacts(snap0, ids)))
+    inner = closed(a0, radius) & closed(a1, radius)
     gamma = open_shear(x0, x1, REACH * 2.0 * radius.mean())
     rows = {}
     for name in windows or sorted(summary["probes"]):
         w = summary["probes"][name]
         centre = np.array([w["x_over_B"] * B, ly - w["depth_over_B"] * B])
         ok = members(reference, centre, w["side_over_B"] * B) & inner & np.isfinite(gamma)
+
+        def pressures(part, ok=ok):
+            """p [Pa] of the window's grains where `part` (of the window's) at both snapshots."""
+            inside = np.zeros(len(ok), bool)
+            inside[np.flatnonzero(ok)[part]] = True
+            return [float(set_p_q(inside, x, radius, contacts, a, summary["thickness"])[0])
+                    for x, a, contacts in states]
+
         rows[name] = split(gamma[ok], a0[ok], a1[ok], np.pi * radius[ok] ** 2,
-                           *((p0[ok], p1[ok]) if p0 is not None else ()))
+                           pressures if len(states) == 2 else None)
     return {"s_over_B": [t0, t1], "windows": rows}
 
 

@@ -2,10 +2,10 @@
 """How much of a window's stress ratio is lost to averaging: the grains' stress over a whole
 probe window against the same grains' stress over sub-windows of a few grain diameters.
 
-Each grain's Love-Weber moment sum (its contacts' forces times their arms, from the snapshot's
-contacts.npz) over the grains' Voronoi cells (mirrored at the side planes,
+The grains' Love-Weber stress (tools/mpm_lig_post/love_weber.py, the contacts of the
+snapshot's contacts.npz) over their summed Voronoi cells (mirrored at the side planes,
 tools/mpm_lig_post/direct_dem/cells.py) gives the window's stress as the probes compute it
-(without the velocity fluctuations); q/p of that is printed beside sum(q_k) / sum(p_k) over
+(without the velocity fluctuations, over the cells' area); q/p of that is printed beside sum(q_k) / sum(p_k) over
 square sub-windows k of SUB grain diameters (by the grains' reference positions; sub-windows
 of fewer than 5 grains left out). Where the stress turns across the window (a band between
 regions that do not move alike) the whole window's q/p falls below its parts'; in a uniform
@@ -25,28 +25,24 @@ TOOLS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..
 sys.path.insert(0, TOOLS)
 from mpm_lig_post.direct_dem.cells import closed, walled_areas  # noqa: E402
 from mpm_lig_post.direct_dem.probes import members  # noqa: E402
+from mpm_lig_post.love_weber import invariants, window_stress  # noqa: E402
 from mpm_lig_post.vtk_legacy import read_polydata  # noqa: E402
 
 
-def grain_moments(snapshot, ids, xy, radius):
-    """Each grain's sum of arm (x) force over its contacts (compression negative)."""
+def snapshot_contacts(snapshot, ids):
+    """A grain snapshot's contacts as love_weber takes them: (first, second) indices into the
+    snapshot's grains (ordered as `ids`) and the force on first from second."""
     c = np.load(snapshot.replace("_grains.vtk", "_contacts.npz"))
     where = {int(k): n for n, k in enumerate(ids)}
-    i = np.array([where[int(k)] for k in c["id1"]])
-    j = np.array([where[int(k)] for k in c["id2"]])
-    f = np.column_stack([c["fx"], c["fy"]])  # the engine's force on id1, from id2
-    n = xy[j] - xy[i]
-    n /= np.linalg.norm(n, axis=1)[:, None]
-    moments = np.zeros((len(xy), 2, 2))
-    np.add.at(moments, j, np.einsum("k,ka,kb->kab", radius[j], n, f))
-    np.add.at(moments, i, np.einsum("k,ka,kb->kab", -radius[i], n, -f))
-    return moments
+    return (np.array([where[int(k)] for k in c["id1"]], int),
+            np.array([where[int(k)] for k in c["id2"]], int),
+            np.column_stack([c["fx"], c["fy"]]))
 
 
-def p_and_q(moments, area, thickness):
-    """In-plane mean stress (compression positive) and Mohr-circle radius of a summed moment."""
-    s = 0.5 * (moments + moments.T) / (area * thickness)
-    return -0.5 * (s[0, 0] + s[1, 1]), float(np.hypot(0.5 * (s[0, 0] - s[1, 1]), s[0, 1]))
+def set_p_q(inside, xy, radius, contacts, areas, thickness):
+    """(p, q) of the grains where `inside` (bool per grain) over their summed cells."""
+    return invariants(window_stress(inside, xy, radius, contacts, areas[inside].sum(),
+                                    thickness))
 
 
 def main():
@@ -72,18 +68,18 @@ def main():
         grains = read_polydata(os.path.join(folder, name))
         xy, radius = grains.points[:, :2], grains.field("radius")
         areas = walled_areas(xy, lx, 4.0 * radius.max())
-        moments = grain_moments(os.path.join(folder, name), ids, xy, radius)
+        contacts = snapshot_contacts(os.path.join(folder, name), ids)
         kept = closed(areas, radius)
         for probe in args.windows or sorted(summary["probes"]):
             w = summary["probes"][probe]
             centre = np.array([w["x_over_B"] * B, ly - w["depth_over_B"] * B])
             side = w["side_over_B"] * B
-            inside = np.flatnonzero(members(start, centre, side) & kept)
-            p, q = p_and_q(moments[inside].sum(0), areas[inside].sum(), thickness)
-            cell = np.floor((start[inside] - (centre - 0.5 * side)) / (args.sub * d)).astype(int)
-            keys = cell[:, 0] * 100000 + cell[:, 1]
-            parts = [p_and_q(moments[inside[keys == k]].sum(0), areas[inside[keys == k]].sum(),
-                             thickness) for k in np.unique(keys) if np.sum(keys == k) >= 5]
+            inside = members(start, centre, side) & kept
+            p, q = set_p_q(inside, xy, radius, contacts, areas, thickness)
+            cell = np.floor((start - (centre - 0.5 * side)) / (args.sub * d)).astype(int)
+            keys = np.where(inside, cell[:, 0] * 100000 + cell[:, 1], -1)
+            parts = [set_p_q(keys == k, xy, radius, contacts, areas, thickness)
+                     for k in np.unique(keys[inside]) if np.sum(keys == k) >= 5]
             ps, qs = np.array(parts).T
             row = {"s_over_B": s, "window": probe, "ratio": q / p,
                    "parts_ratio": float(qs.sum() / ps.sum()), "parts": len(parts)}

@@ -17,7 +17,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
                                 "tools"))
-from mpm_lig_post.direct_dem.cells import walled_areas  # noqa: E402
+from mpm_lig_post.direct_dem.cells import closed, walled_areas  # noqa: E402
 from mpm_lig_post.direct_dem.probes import members, window_F  # noqa: E402
 from mpm_lig_post.vtk_legacy import read_polydata  # noqa: E402
 
@@ -39,8 +39,7 @@ def main(run):
         grains = read_polydata(os.path.join(folder, name))
         xy, radius = grains.points[:, :2], grains.field("radius")
         now = walled_areas(xy, lx, reach)
-        closed = 2.5 * np.pi * radius ** 2
-        inner = np.isfinite(start) & np.isfinite(now) & (start < closed) & (now < closed)
+        inner = closed(start, radius) & closed(now, radius)
         s = int(name.split("_")[1]) * ds_over_B
         for probe, w in summary["probes"].items():
             centre = np.array([w["x_over_B"] * B, ly - w["depth_over_B"] * B])

@@ -179,12 +179,16 @@ class Probes:
         first, second, force = run.contacts_now()
         contacts = (np.array([index[int(i)] for i in first], int),
                     np.array([index[int(i)] for i in second], int), force)
-        reach = 4.0 * float(r.max())
-        if self.start_cells is None:
-            self.start_cells = walled_areas(run.ref_xy, run.lx, reach)
-        start = np.full(len(ids), np.nan)
-        start[known] = self.start_cells[where_ref[known]]
-        now = walled_areas(xy, run.lx, reach)
+        path = os.path.join(run.out, "probes.csv")
+        columns = self.file_columns(path)
+        with_cells = "cells_volumetric" in columns
+        if with_cells:  # a Voronoi tessellation of every grain: only for a file that keeps it
+            reach = 4.0 * float(r.max())
+            if self.start_cells is None:
+                self.start_cells = walled_areas(run.ref_xy, run.lx, reach)
+            start = np.full(len(ids), np.nan)
+            start[known] = self.start_cells[where_ref[known]]
+            now = walled_areas(xy, run.lx, reach)
         rows = []
         for name, (centre, side) in windows(pb, self.list, self.side, run.lx, run.ly).items():
             inside = known & members(np.nan_to_num(ref, nan=-1e30), centre, side)
@@ -198,11 +202,10 @@ class Probes:
                 ["%.12g" % v for v in (run.load_steps * pb["dt"], s / pb["B"], F[0, 0], F[0, 1],
                                        F[1, 0], F[1, 1], sigma[0, 0], sigma[1, 1],
                                        sigma[0, 1], p, q)] + \
-                ["%d" % int(inside.sum()), "%d" % touching,
-                 "%.12g" % cells_volumetric(start, now, r, inside)]
+                ["%d" % int(inside.sum()), "%d" % touching]
+            if with_cells:
+                values.append("%.12g" % cells_volumetric(start, now, r, inside))
             rows.append(dict(zip(COLUMNS, values)))
-        path = os.path.join(run.out, "probes.csv")
-        columns = self.file_columns(path)
         with open(path, "a") as f:
             for row in rows:
                 f.write(",".join(row[c] for c in columns) + "\n")
