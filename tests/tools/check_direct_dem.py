@@ -15,6 +15,10 @@ usage: check_direct_dem.py bad WORK      bad input: exit 2, the key named, nothi
        check_direct_dem.py settle_damping WORK REFERENCE
                                          the settling with kinetic damping (REFERENCE, run's
                                          block) against none, and --resettle
+       check_direct_dem.py column WORK REFERENCE
+                                         --footing-column on REFERENCE's settled block: the
+                                         column's discs moved with the footing, its state
+                                         through a SIGTERM and --resume bit for bit
        check_direct_dem.py resume WORK REFERENCE
                                          the same run stopped in its preparation (at a
                                          checkpoint) and in its loading (SIGTERM), resumed: the
@@ -413,6 +417,29 @@ def probes_checked(out, s, prep):
     check(wedge["F22"][-1] < 1.0, f"the wedge is compressed (F22 = {wedge['F22'][-1]:.4f})")
 
 
+def stop_in_loading(args, out, what):
+    """The tool on the tiny case with `args`, sent SIGTERM once `out` holds a checkpoint of the
+    loading: exit 4 naming --resume (or the loading ended first: skipped)."""
+    p = subprocess.Popen([sys.executable, TOOL, TINY] + args,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    while p.poll() is None:
+        try:
+            if json.load(open(os.path.join(out, "checkpoint.json")))["stage"] == "load":
+                break
+        except (OSError, ValueError, KeyError):
+            pass
+        time.sleep(0.1)
+    p.send_signal(signal.SIGTERM)
+    _, stderr = p.communicate()
+    if p.returncode == 0:
+        # A fast machine can finish the short loading before the signal lands: nothing was
+        # stopped, and the resume continues a finished run (a no-op).
+        print(f"skip {what}: the loading ended before the signal")
+    else:
+        check(p.returncode == 4 and "SIGTERM" in stderr and "--resume" in stderr,
+              f"{what}: exit {p.returncode}: {stderr.strip()[-200:]}")
+
+
 def resume(work, reference):
     """Stopped and resumed in each stage: the uninterrupted run's history bit for bit."""
     shutil.rmtree(work, ignore_errors=True)
@@ -424,24 +451,7 @@ def resume(work, reference):
           f"--stop-after-minutes: exit {code} at a checkpoint of the preparation "
           f"({record['stage']}): {stderr.strip()[-160:]}")
     shutil.copytree(out, os.path.join(work, "stopped_in_preparation"))
-    p = subprocess.Popen([sys.executable, TOOL, TINY, "--output", out, "--resume"],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    while p.poll() is None:
-        try:
-            if json.load(open(os.path.join(out, "checkpoint.json")))["stage"] == "load":
-                break
-        except (OSError, ValueError, KeyError):
-            pass
-        time.sleep(0.2)
-    p.send_signal(signal.SIGTERM)
-    _, stderr = p.communicate()
-    if p.returncode == 0:
-        # A fast machine can finish the short loading before the signal lands: nothing was
-        # stopped, and the resume below continues a finished run (a no-op).
-        print("skip SIGTERM in the loading: the loading ended before the signal")
-    else:
-        check(p.returncode == 4 and "SIGTERM" in stderr and "--resume" in stderr,
-              f"SIGTERM in the loading: exit {p.returncode}: {stderr.strip()[-200:]}")
+    stop_in_loading(["--output", out, "--resume"], out, "SIGTERM in the loading")
     shutil.copytree(out, os.path.join(work, "stopped_in_loading"))
     code, _, stderr = run_tool([TINY, "--output", out, "--resume"])
     check(code == 0, f"the resumed run ends with exit 0 ({stderr.strip()[-200:]})")
@@ -637,6 +647,68 @@ def settle_damping(work, reference):
     check(rows[0] != rows[1], "the resettled block's loading starts from its new state")
 
 
+def column_discs(snapshot, radius, half_width):
+    """{x: sorted y} of the column's discs in a grains snapshot (VTK): radius `radius`, centres
+    on the column's grid, x < B/2."""
+    lines = open(snapshot).read().split("\n")
+    n = int(lines[4].split()[1])
+    xy = np.loadtxt(lines[5:5 + n])[:, :2]
+    r = np.loadtxt(lines[5 + n + 3:5 + 2 * n + 3])
+    on = (np.abs(r - radius) < 1e-12) & (xy[:, 0] < half_width)
+    return xy[on]
+
+
+def column(work, reference):
+    """--footing-column 1 on the run test's settled block (--start-from): the column's discs
+    are frozen to the footing (every one moves down by the settlement, none sideways), the
+    footing carries another load than the one-grain block's, and the run stopped by SIGTERM
+    in its loading and resumed computes the same history bit for bit."""
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    whole, cut = os.path.join(work, "whole"), os.path.join(work, "cut")
+    args = ["--start-from", reference, "--footing-column", "1", "--settlement", str(SETTLEMENT),
+            "--snapshots", "0", str(SETTLEMENT), "--checkpoint-steps", "10000"]
+    code, out, stderr = run_tool([TINY, "--output", whole] + args)
+    check(code == 0, f"--footing-column 1 from the settled block: exit {code} "
+          f"{stderr.strip()[-200:]}")
+    if code != 0:
+        return
+    summary = json.load(open(os.path.join(whole, "summary.json")))
+    settled = json.load(open(os.path.join(reference, "settled.json")))["state"]
+    B, rmax = summary["B"], json.load(open(TINY))["materials"][0]["rve"]["radius"]["max"]
+    per_row = math.ceil(0.5 * B / (2 * rmax) - 1e-9)
+    radius = 0.5 * B / (2 * per_row)
+    rows = math.floor(B / (2 * radius))  # at least this many fit in one B above the surface
+    added = summary["grains"] - settled["grains"]
+    check(summary["footing_column"] == 1.0 and added >= per_row * rows and added % per_row == 0,
+          f"the column: {added} discs, {per_row} a row, at least {rows} rows")
+    snaps = sorted(f for f in os.listdir(os.path.join(whole, "snapshots")) if f.endswith("_grains.vtk"))
+    start, end = (column_discs(os.path.join(whole, "snapshots", f), radius, 0.5 * B)
+                  for f in (snaps[0], snaps[-1]))
+    steps = [int(f.split("_")[1]) for f in (snaps[0], snaps[-1])]
+    s = (steps[1] - steps[0]) * summary["footing_speed"] * summary["time_step"]
+    order = lambda a: a[np.lexsort((a[:, 1], a[:, 0]))]
+    moved = len(start) == added and len(end) == added and \
+        np.allclose(order(end) - order(start), [0.0, -s], atol=1e-6 * B)  # VTK's 9 digits
+    check(moved, f"every column disc ({len(start)}, {len(end)} found) moved down by the footing's {s:.4g} m "
+          "between the snapshots and not sideways")
+    mine, plain = (np.loadtxt(os.path.join(d, "history.csv"), delimiter=",", skiprows=1)
+                   for d in (whole, reference))
+    check(mine.shape == plain.shape and np.max(np.abs(mine[:, 6] - plain[:, 6])) > 1e-3,
+          "the footing on its column carries another load than the one-grain block's "
+          f"(largest difference {np.max(np.abs(mine[:, 6] - plain[:, 6])):.3g} q_s)")
+    stop_in_loading(["--output", cut] + args, cut, "SIGTERM in the column's loading")
+    code, _, stderr = run_tool([TINY, "--output", cut, "--resume", "--footing-column", "0.5"])
+    check(code == 2 and "--footing-column 0.5" in stderr,
+          f"resumed with another --footing-column: exit {code} {stderr.strip()[-160:]}")
+    code, _, stderr = run_tool([TINY, "--output", cut, "--resume"])
+    check(code == 0, f"resumed: exit {code} {stderr.strip()[-200:]}")
+    same = open(os.path.join(cut, "history.csv"), "rb").read() == \
+        open(os.path.join(whole, "history.csv"), "rb").read()
+    check(same, "the column's run stopped and resumed: history.csv bit-identical to the "
+          "uninterrupted one's")
+
+
 def cells():
     """Voronoi cells of a square lattice of grains between the side planes, where every cell is
     the lattice's square: beside a plane (mirrored), under a uniform stretch, and across a slip
@@ -690,6 +762,8 @@ def main():
         real(sys.argv[2])
     elif mode == "resume":
         resume(sys.argv[2], sys.argv[3])
+    elif mode == "column":
+        column(sys.argv[2], sys.argv[3])
     elif mode == "start_from_scale":
         start_from_scale(sys.argv[2])
     elif mode == "settle_damping":

@@ -3,8 +3,11 @@
 DEM's eps_q coarse-grained on the case's points (its results.h5, written by tools/direct_dem.py)
 and each mpm_lig run's points, at the output nearest one settlement.
 
-usage: fields_beside_grains.py DEM_RUN MPM_RUN:LABEL ... -o PNG [--at 0.5] [--eq-max 1.0]
-       [--speed 0.5] [--width 0.2]
+usage: fields_beside_grains.py DEM_RUN[:LABEL] MPM_RUN:LABEL ... -o PNG [--at 0.5]
+       [--eq-max 1.0] [--speed 0.5] [--width 0.2] [--more-dem DEM_RUN:LABEL ...]
+
+--more-dem adds direct DEM runs after the first (e.g. the footing on a column beside the
+one-grain block).
 
 The MPM runs' settlement is speed x time (the footing's constant speed, m/s, and its width B);
 the direct DEM's output steps are labelled by 1000 s/B.
@@ -44,9 +47,13 @@ def main():
     a.add_argument("--eq-max", type=float, default=1.0)
     a.add_argument("--speed", type=float, default=0.5)
     a.add_argument("--width", type=float, default=0.2)
+    a.add_argument("--more-dem", nargs="*", default=[], metavar="DEM_RUN:LABEL")
     args = a.parse_args()
-    panels = [(os.path.join(args.dem_run, "results.h5"), "grains (direct DEM)",
-               lambda attrs: attrs["step"] / 1000.0)]
+    panels = []
+    for item in [args.dem_run] + args.more_dem:
+        run, _, label = item.partition(":")
+        panels.append((os.path.join(run, "results.h5"), label or "grains (direct DEM)",
+                       lambda attrs: attrs["step"] / 1000.0))
     for item in args.mpm:
         run, _, label = item.partition(":")
         panels.append((os.path.join(run, "results.h5"), label or os.path.basename(run),

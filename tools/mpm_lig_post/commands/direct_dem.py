@@ -5,6 +5,7 @@ usage: direct_dem.py CASE.json --output DIR [--scale S] [--tiles T] [--seed N]
                      [--settlement S_OVER_B] [--speed-factor F] [--np N] [--snapshots S1 S2 ...]
                      [--fields-every DS] [--surcharge-every STEPS] [--checkpoint-steps STEPS]
                      [--void-ratio-tolerance DE] [--settle-damping kinetic|none]
+                     [--footing-column H]
                      [--stop-after-minutes M] [--liggghts PATH]
                      [--resume | --start-from RUN_DIR [--resettle]]
 
@@ -26,7 +27,11 @@ surcharge q_s). The direct DEM:
   speed, the surcharge q_s as vertical forces on the top grain of each d_mean-wide column of the
   free surface beyond B/2, re-found every --surcharge-every steps (so it follows the heave);
   no gravity. Soil grains the opened planes cut are shrunk to fit and grown back under load;
-  the block then settles under q_s, the footing held, until at rest (with --settle-damping
+  with --footing-column H the footing block is extended up by a column of frozen discs H
+  footing widths above the surface (soil that heaves beside the sinking footing then stays
+  beside it, as the multiscale footing keeps its whole column clear; without it the soil
+  flows onto the one-grain block); the block then settles under q_s, the footing held, until
+  at rest (with --settle-damping
   kinetic, the default, the soil's velocities are zeroed at each maximum of its kinetic
   energy: the opened block rings in its lowest vertical mode, which the contacts hardly damp);
 - the speed: strain rate v/B at the rve's substeps.inertial_number, I = (v/B) d sqrt(rho/p),
@@ -115,6 +120,11 @@ def arguments():
                    help="the settling under q_s: kinetic (default: the soil's velocities zeroed "
                    "at each maximum of its kinetic energy) or none (the contacts' damping only, "
                    "as runs before this option)")
+    p.add_argument("--footing-column", type=cli.non_negative, metavar="H",
+                   help="the footing block extended up by a column of frozen discs H footing "
+                   "widths above the surface (default 0: the one-grain block; with "
+                   "--start-from a block settled without one, the column is added before "
+                   "the loading)")
     p.add_argument("--resettle", action="store_true",
                    help="with --start-from: settle the loaded block again (with "
                    "--settle-damping) before its loading")
@@ -181,11 +191,13 @@ def main():
             refuse_links(start, ["settled.json", "settled.restart", "reference.npz"])
             record = verify_checkpoint(start, a, a.case_digest, "settled.json")
             options = {k: v for k, v in record["options"].items()
-                       if k in ("scale", "tiles", "seed", "void_ratio_tolerance")}
+                       if k in ("scale", "tiles", "seed", "void_ratio_tolerance")
+                       or (k == "footing_column" and v > 0)}
             # The problem at the settled block's scale: its footing width, speed and the
             # probes' places are those of that block, whatever --scale says (or omits).
             pb = problem(case, a.case, options["scale"])
             fill_options(a, pb, options, start)
+            a.add_column = a.footing_column > 0 and "footing_column" not in options
         else:
             pb = problem(case, a.case, a.scale or KEPT["scale"])
             fill_options(a, pb)
@@ -256,9 +268,13 @@ def go(run, a, out, record):
             run.next_checkpoint = run.steps + a.checkpoint_steps
             if a.resettle:
                 run.stage, run.settle_state = "settle", None
+            if getattr(a, "add_column", False):
+                run.add_footing_column(a.footing_column)
     if run.stage == "prepare":
         run.consolidate()
         run.open_block()
+        if a.footing_column > 0:
+            run.add_footing_column(a.footing_column)
         run.stage = "settle"
     if run.stage == "settle":
         run.settle()

@@ -131,6 +131,7 @@ def run_row(directory):
         raise InputError(f"{path}: no rows")
     row = {"run": directory, "grains": summary["grains"], "B_over_d": summary["B_over_d"],
            "seed": summary["seed"], "speed_factor": summary["speed_factor"],
+           "footing_column": summary.get("footing_column", 0.0),  # older summaries: none
            "particle_steps": summary["particle_steps"],
            "loading_particle_steps": summary["loading_steps"] * summary["grains"],
            "core_hours": summary["core_seconds"] / 3600.0,
@@ -241,7 +242,8 @@ def main():
     fig, ax = figures.subplots(figsize=(7.5, 4.6))
     for d, sB, q, r in curves:
         ax.plot(sB, q, lw=1.0, label=f"direct DEM, B/d = {r['B_over_d']:.0f}, seed {r['seed']}"
-                + (f", speed x{r['speed_factor']:g}" if r["speed_factor"] != 1 else ""))
+                + (f", speed x{r['speed_factor']:g}" if r["speed_factor"] != 1 else "")
+                + (f", on a column of {r['footing_column']:g} B" if r["footing_column"] else ""))
     for (name, sB, q), (colour, style) in zip(multi_curves, greys(len(multi_curves))):
         ax.plot(sB, q, color=colour, lw=1.6, ls=style, label=f"multiscale {name}")
     tabled = [(name, m) for name, m in multi.items() if name in a.rows]

@@ -63,6 +63,45 @@ class Block:
         self.progress(f"opened the block: {len(base)} base, {len(foot)} footing, "
                       f"{len(cut_radii)} cut grains regrown", force=True)
 
+    def add_footing_column(self, height):
+        """--footing-column H: the footing block extended up by a column H footing widths above
+        the soil's surface over 0 <= x < B/2, of touching discs on a square grid that fills the
+        half width (radius at most r_max), frozen and moved with the footing. The one-grain block
+        alone sinks below the heaving surface and the soil flows onto it; a footing on its
+        column (and the multiscale footing, which keeps its whole column clear) holds that soil
+        beside it. Sites where a disc would overlap a grain stay empty. The discs' ids."""
+        pb = self.pb
+        half = 0.5 * pb["B"]
+        per_row = int(math.ceil(half / (2.0 * pb["rmax"]) - 1e-9))
+        r = half / (2.0 * per_row)
+        ids, xy, radii = self.grains_now()
+        foot = np.isin(ids, self.footing_ids)
+        bottom = float(np.max(xy[foot, 1] + radii[foot])) + r
+        top = self.ly + height * pb["B"]
+        rows = max(1, int(math.floor((top - bottom) / (2.0 * r))) + 1)
+        sites = [(r * (2 * i + 1), bottom + 2.0 * r * j) for j in range(rows) for i in range(per_row)]
+        free = [s for s in sites if np.all(np.hypot(xy[:, 0] - s[0], xy[:, 1] - s[1]) >= radii + r)]
+        rho = float(pb["rve"]["density"])
+        first = int(ids.max()) + 1
+        lines = [f"change_box all y final 0.0 {bottom + 2.0 * r * rows!r} units box"]
+        for k, (x, y) in enumerate(free):
+            lines += [f"create_atoms 1 single {x!r} {y!r} 0.0 units box",
+                      f"set atom {first + k} diameter {2 * r!r} density {rho!r}"]
+        column = list(range(first, first + len(free)))
+        lines += ["group footing id " + " ".join(map(str, column)),
+                  "group frozen union base footing", "velocity frozen set 0 0 0"]
+        self.send("\n".join(lines))
+        self.footing_ids = self.footing_ids + column
+        self.grains += len(column)
+        got = self.grains_now()[0]
+        if len(got) != self.grains or not np.all(np.isin(column, got)):
+            raise RuntimeError(f"the footing's column: {len(column)} discs asked, the engine "
+                               f"holds {len(got)} grains where {self.grains} were expected")
+        self.progress(f"the footing's column: {len(column)} discs of radius {r:.4g} m, "
+                      f"{rows} rows to {height:g} B above the surface "
+                      f"({len(sites) - len(free)} sites left empty)", force=True)
+        return column
+
     def dynamics(self):
         """Integration of the soil, walls, exclusions, force sums (also after --resume)."""
         lx = self.lx

@@ -18,10 +18,11 @@ FORMAT = 2             # checkpoint.json layout
 KEPT = {"scale": 1.0, "tiles": 1, "seed": 11, "speed_factor": 1.0, "np": 1, "fields_every": 0.05,
         "snapshots": [0.1, 0.5], "surcharge_every": 500, "checkpoint_steps": None,
         "void_ratio_tolerance": None, "probes": [], "probes_every": 0.005,
-        "probe_window": None, "settle_damping": "kinetic"}
+        "probe_window": None, "settle_damping": "kinetic", "footing_column": 0.0}
 # Options added after runs were checkpointed without them: such a checkpoint ran with these
 # values (a resume of it keeps them).
-ADDED_KEPT = {"probes": [], "probes_every": 0.005, "probe_window": None, "settle_damping": "none"}
+ADDED_KEPT = {"probes": [], "probes_every": 0.005, "probe_window": None, "settle_damping": "none",
+              "footing_column": 0.0}
 # Everything the run keeps in its checkpoint besides the engine's restart.
 STATE = ("steps", "particle_steps", "grains", "solid", "lx", "ly", "load_steps", "next_field",
          "next_snap", "prepared", "settled", "prep_state", "servo_state", "settle_state",
