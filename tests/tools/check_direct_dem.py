@@ -692,6 +692,11 @@ def column(work, reference):
         np.allclose(order(end) - order(start), [0.0, -s], atol=1e-6 * B)  # VTK's 9 digits
     check(moved, f"every column disc ({len(start)}, {len(end)} found) moved down by the footing's {s:.4g} m "
           "between the snapshots and not sideways")
+    band = subprocess.run([sys.executable, os.path.join(TOOLS, "shear_band.py"), whole, "--to",
+                           str(SETTLEMENT), "--widths", "2", "-o", os.path.join(work, "band.png")],
+                          capture_output=True, text=True)
+    check(band.returncode == 0, "shear_band.py from the start of loading, whose reference has no "
+          f"column: exit {band.returncode} {band.stderr.strip()[-160:]}")
     mine, plain = (np.loadtxt(os.path.join(d, "history.csv"), delimiter=",", skiprows=1)
                    for d in (whole, reference))
     check(mine.shape == plain.shape and np.max(np.abs(mine[:, 6] - plain[:, 6])) > 1e-3,
