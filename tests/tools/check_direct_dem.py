@@ -703,6 +703,19 @@ def column(work, reference):
           "the footing on its column carries another load than the one-grain block's "
           f"(largest difference {np.max(np.abs(mine[:, 6] - plain[:, 6])):.3g} q_s)")
     stop_in_loading(["--output", cut] + args, cut, "SIGTERM in the column's loading")
+    fresh, again = os.path.join(work, "fresh"), os.path.join(work, "again")
+    code, _, stderr = run_tool([TINY, "--output", fresh, "--footing-column", "1", "--settlement",
+                                "0.004", "--snapshots"])
+    settled = json.load(open(os.path.join(fresh, "settled.json"))) if code == 0 else {}
+    check(code == 0 and settled["options"]["footing_column"] == 1.0 and
+          len(settled["state"]["footing_ids"]) > added,
+          f"a new run with the column: exit {code}, the settled block holds it "
+          f"{stderr.strip()[-160:]}")
+    code, _, stderr = run_tool([TINY, "--output", again, "--start-from", fresh,
+                                "--footing-column", "0.5", "--settlement", "0.004"])
+    check(code == 2 and "--footing-column 0.5" in stderr and not os.path.exists(again),
+          f"--start-from a block with a column, another --footing-column: exit {code}, nothing "
+          f"created {stderr.strip()[-160:]}")
     code, _, stderr = run_tool([TINY, "--output", cut, "--resume", "--footing-column", "0.5"])
     check(code == 2 and "--footing-column 0.5" in stderr,
           f"resumed with another --footing-column: exit {code} {stderr.strip()[-160:]}")

@@ -64,7 +64,8 @@ def fill_options(a, pb, kept=None, source=None):
         if kept is not None and key in kept:
             if given is not None and given != kept[key]:
                 raise InputError(f"--{key.replace('_', '-')} {given}: {source} was run with "
-                                 f"{kept[key]}; a resume keeps it")
+                                 f"{kept[key]}; a resume, or a --start-from of its settled "
+                                 "block, keeps it")
             setattr(a, key, kept[key])
         elif given is None:
             setattr(a, key, default)
