@@ -682,7 +682,8 @@ def column(work, reference):
     added = summary["grains"] - settled["grains"]
     check(summary["footing_column"] == 1.0 and added >= per_row * rows and added % per_row == 0,
           f"the column: {added} discs, {per_row} a row, at least {rows} rows")
-    snaps = sorted(f for f in os.listdir(os.path.join(whole, "snapshots")) if f.endswith("_grains.vtk"))
+    snaps = sorted(f for f in os.listdir(os.path.join(whole, "snapshots"))
+                   if f.endswith("_grains.vtk"))
     start, end = (column_discs(os.path.join(whole, "snapshots", f), radius, 0.5 * B)
                   for f in (snaps[0], snaps[-1]))
     steps = [int(f.split("_")[1]) for f in (snaps[0], snaps[-1])]

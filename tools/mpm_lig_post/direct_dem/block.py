@@ -79,8 +79,10 @@ class Block:
         bottom = float(np.max(xy[foot, 1] + radii[foot])) + r
         top = self.ly + height * pb["B"]
         rows = max(1, int(math.floor((top - bottom) / (2.0 * r))) + 1)
-        sites = [(r * (2 * i + 1), bottom + 2.0 * r * j) for j in range(rows) for i in range(per_row)]
-        free = [s for s in sites if np.all(np.hypot(xy[:, 0] - s[0], xy[:, 1] - s[1]) >= radii + r)]
+        sites = [(r * (2 * i + 1), bottom + 2.0 * r * j)
+                 for j in range(rows) for i in range(per_row)]
+        free = [(x, y) for x, y in sites
+                if np.all(np.hypot(xy[:, 0] - x, xy[:, 1] - y) >= radii + r)]
         rho = float(pb["rve"]["density"])
         first = int(ids.max()) + 1
         lines = [f"change_box all y final 0.0 {bottom + 2.0 * r * rows!r} units box"]
