@@ -691,8 +691,8 @@ def column(work, reference):
     order = lambda a: a[np.lexsort((a[:, 1], a[:, 0]))]
     moved = len(start) == added and len(end) == added and \
         np.allclose(order(end) - order(start), [0.0, -s], atol=1e-6 * B)  # VTK's 9 digits
-    check(moved, f"every column disc ({len(start)}, {len(end)} found) moved down by the footing's {s:.4g} m "
-          "between the snapshots and not sideways")
+    check(moved, f"every column disc ({len(start)}, {len(end)} found) moved down by the "
+          f"footing's {s:.4g} m between the snapshots and not sideways")
     band = subprocess.run([sys.executable, os.path.join(TOOLS, "shear_band.py"), whole, "--to",
                            str(SETTLEMENT), "--widths", "2", "-o", os.path.join(work, "band.png")],
                           capture_output=True, text=True)
