@@ -648,12 +648,11 @@ def settle_damping(work, reference):
 
 
 def column_discs(snapshot, radius, half_width):
-    """{x: sorted y} of the column's discs in a grains snapshot (VTK): radius `radius`, centres
-    on the column's grid, x < B/2."""
-    lines = open(snapshot).read().split("\n")
-    n = int(lines[4].split()[1])
-    xy = np.loadtxt(lines[5:5 + n])[:, :2]
-    r = np.loadtxt(lines[5 + n + 3:5 + 2 * n + 3])
+    """Centres (n x 2) of the column's discs in a grains snapshot (VTK): radius `radius`,
+    x < B/2."""
+    from mpm_lig_post.vtk_legacy import read_polydata
+    grains = read_polydata(snapshot)
+    xy, r = grains.points[:, :2], grains.point_data["radius"]
     on = (np.abs(r - radius) < 1e-12) & (xy[:, 0] < half_width)
     return xy[on]
 

@@ -197,7 +197,6 @@ def main():
             # probes' places are those of that block, whatever --scale says (or omits).
             pb = problem(case, a.case, options["scale"])
             fill_options(a, pb, options, start)
-            a.add_column = a.footing_column > 0 and "footing_column" not in options
         else:
             pb = problem(case, a.case, a.scale or KEPT["scale"])
             fill_options(a, pb)
@@ -268,8 +267,8 @@ def go(run, a, out, record):
             run.next_checkpoint = run.steps + a.checkpoint_steps
             if a.resettle:
                 run.stage, run.settle_state = "settle", None
-            if getattr(a, "add_column", False):
-                run.add_footing_column(a.footing_column)
+            if a.footing_column > 0 and not record["options"].get("footing_column"):
+                run.add_footing_column(a.footing_column)  # a block settled without one
     if run.stage == "prepare":
         run.consolidate()
         run.open_block()
