@@ -119,8 +119,9 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
   }
   weights_.resize(particles_.size());
   increments_.resize(particles_.size());
-  // The second-gradient energy stiffens the shortest waves (wave number π/h) by
-  // D (π/h)² = G_s (ℓ/h)².
+  // The second-gradient energy stiffens a wave of number k by D sin²(kh)/h² (its fitted
+  // gradient is sin(kh)/h times the wave's, docs/methods.md §7), at most D/h²: D (π/h)² =
+  // G_s (ℓ/h)², the stiffening of the continuum's shortest wave, bounds it.
   if (second_gradient_)
     gradient_modulus_ = c.softening_modulus * (c.internal_length / grid_.min_cell()) *
                         (c.internal_length / grid_.min_cell());

@@ -1,0 +1,94 @@
+#!/usr/bin/python3
+"""How much of a footing run's deviatoric strain alternates point by point: along each axis of
+the points' reference grid, the mean |second difference| of eps_q (a point against the mean of
+its two neighbours) over the mean |first difference| (half the difference of the two). A field
+smooth over a few cells gives a ratio well below 1; a field alternating from one point to the
+next (period 2 h) gives a large one, with a first difference near zero.
+
+usage: odd_even.py MPM_RUN[:LABEL] ... [--at 0.1 0.2 0.3] [--region X0 X1 Y0 Y1]
+       [--quantity eq|exy] [--speed 0.5] [--width 0.2] [--json OUT.json]
+
+--quantity exy measures the logarithmic shear strain (results.h5 `strain`, Voigt xy) instead
+of eps_q.
+
+The points are those whose reference position (position minus displacement) lies in the
+region [m] (default: beside and under the footing's edge, 0 <= x <= 0.35, 0.25 <= y <= 0.6);
+s/B is speed x time / width, the output nearest each --at.
+"""
+import argparse
+import json
+
+import h5py
+import numpy as np
+
+
+def nearest_output(f, time):
+    steps = [k for k in f if k.startswith("step_")]
+    return f[min(steps, key=lambda k: abs(f[k].attrs["time"] - time))]
+
+
+def ratios(group, region, quantity):
+    """{axis: (mean |second difference|, mean |first difference|)} over the region's points."""
+    reference = group["positions"][:, :2] - group["displacement"][:, :2]
+    if quantity == "exy":
+        eq = group["strain"][:, 3]
+    else:
+        eq = group["deviatoric_strain"][()].ravel()
+    h = np.min(np.diff(np.unique(np.round(reference[:, 0], 9))))
+    index = {(int(round(x / h - 0.5)), int(round(y / h - 0.5))): p
+             for p, (x, y) in enumerate(reference)}
+    x0, x1, y0, y1 = region
+    out = {}
+    for axis, (di, dj) in (("x", (1, 0)), ("y", (0, 1))):
+        second, first = [], []
+        for (i, j), p in index.items():
+            x, y = reference[p]
+            if not (x0 <= x <= x1 and y0 <= y <= y1):
+                continue
+            a, b = index.get((i - di, j - dj)), index.get((i + di, j + dj))
+            if a is None or b is None:
+                continue
+            second.append(abs(eq[p] - 0.5 * (eq[a] + eq[b])))
+            first.append(0.5 * abs(eq[b] - eq[a]))
+        out[axis] = (float(np.mean(second)), float(np.mean(first)))
+    return h, out
+
+
+def main():
+    a = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    a.add_argument("runs", nargs="+", metavar="MPM_RUN[:LABEL]")
+    a.add_argument("--at", type=float, nargs="+", default=[0.1, 0.2, 0.3])
+    a.add_argument("--region", type=float, nargs=4, default=[0.0, 0.35, 0.25, 0.6])
+    a.add_argument("--quantity", choices=["eq", "exy"], default="eq")
+    a.add_argument("--speed", type=float, default=0.5)
+    a.add_argument("--width", type=float, default=0.2)
+    a.add_argument("--json")
+    args = a.parse_args()
+    rows = []
+    print("| run | s/B | h [m] | along x: second / first difference (ratio) "
+          "| along y: second / first difference (ratio) |")
+    print("|---|---|---|---|---|")
+    for item in args.runs:
+        run, _, label = item.partition(":")
+        with h5py.File(f"{run}/results.h5", "r") as f:
+            seen = set()
+            for at in args.at:
+                group = nearest_output(f, at * args.width / args.speed)
+                if group.name in seen:  # a run that ends before this s/B
+                    continue
+                seen.add(group.name)
+                s = args.speed * group.attrs["time"] / args.width
+                h, out = ratios(group, args.region, args.quantity)
+                (sx, fx), (sy, fy) = out["x"], out["y"]
+                rows.append({"run": label or run, "s_over_B": s, "h": h, "x": out["x"],
+                             "y": out["y"], "ratio_x": sx / fx, "ratio_y": sy / fy})
+                print(f"| {label or run} | {s:.2f} | {h:.4f} | {sx:.4f} / {fx:.4f} "
+                      f"({sx / fx:.2f}) | {sy:.4f} / {fy:.4f} ({sy / fy:.2f}) |")
+    if args.json:
+        with open(args.json, "w") as out:
+            record = {"region": args.region, "quantity": args.quantity, "rows": rows}
+            json.dump(record, out, indent=1)
+
+
+if __name__ == "__main__":
+    main()
