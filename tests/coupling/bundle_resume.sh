@@ -3,8 +3,8 @@
 # members match the index and the manifest; a run killed after its step-4 checkpoint resumes
 # bit-identical to an uninterrupted run on the same and on another rank count (1 -> 1, 2 -> 2,
 # 1 -> 2 and 2 -> 1) and when carried to another folder as an archive without its packings
-# (docs/running.md §2: how a run moves to another machine); a checkpoint converted to format 4 (a file per point) resumes
-# bit-identical too; a flipped byte in a member, a cut or a lengthened bundle is refused
+# (docs/running.md §2: how a run moves to another machine); a checkpoint converted to format 4
+# (a file per point) resumes bit-identical too; a flipped byte in a member, a cut or a lengthened bundle is refused
 # (exit 2, naming the point and the bundle) with history.csv untouched.
 # usage: bundle_resume.sh MPM_LIG CASE.json WORK_DIR MPIRUN...
 set -u
