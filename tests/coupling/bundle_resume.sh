@@ -4,8 +4,9 @@
 # bit-identical to an uninterrupted run on the same and on another rank count (1 -> 1, 2 -> 2,
 # 1 -> 2 and 2 -> 1) and when carried to another folder as an archive without its packings
 # (docs/running.md §2: how a run moves to another machine); a checkpoint converted to format 4
-# (a file per point) resumes bit-identical too; a flipped byte in a member, a cut or a lengthened bundle is refused
-# (exit 2, naming the point and the bundle) with history.csv untouched.
+# (a file per point) resumes bit-identical too; a flipped byte in a member, a cut or a
+# lengthened bundle is refused (exit 2, naming the point and the bundle) with history.csv
+# untouched.
 # usage: bundle_resume.sh MPM_LIG CASE.json WORK_DIR MPIRUN...
 set -u
 exe=$1 case=$2 work=$3
@@ -36,8 +37,8 @@ done
 
 scenario="carried as an archive without packings/, resumed on 2"
 rm -rf "$work/run" && mkdir "$work/run"
-tar -C "$work/killed1" -cJf "$work/carried.tar.xz" --exclude=./packings --exclude=./mpm_lig.lock . &&
-  tar -C "$work/run" -xJf "$work/carried.tar.xz" || fail "archive"
+tar -C "$work/killed1" -cJf "$work/carried.tar.xz" --exclude=./packings \
+    --exclude=./mpm_lig.lock . && tar -C "$work/run" -xJf "$work/carried.tar.xz" || fail "archive"
 [ ! -e "$work/run/packings" ] || fail "the archive holds packings/"
 "$@" -np 2 "$exe" "$work/case.json" --resume "$work/run" > "$work/run.log" 2>&1 ||
   fail "resume failed: $(tail -c 400 "$work/run.log")"
