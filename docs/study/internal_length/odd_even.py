@@ -31,9 +31,9 @@ def ratios(group, region, quantity):
     """{axis: (mean |second difference|, mean |first difference|)} over the region's points."""
     reference = group["positions"][:, :2] - group["displacement"][:, :2]
     if quantity == "exy":
-        eq = group["strain"][:, 3]
+        values = group["strain"][:, 3]
     else:
-        eq = group["deviatoric_strain"][()].ravel()
+        values = group["deviatoric_strain"][()].ravel()
     h = np.min(np.diff(np.unique(np.round(reference[:, 0], 9))))
     index = {(int(round(x / h - 0.5)), int(round(y / h - 0.5))): p
              for p, (x, y) in enumerate(reference)}
@@ -48,8 +48,8 @@ def ratios(group, region, quantity):
             a, b = index.get((i - di, j - dj)), index.get((i + di, j + dj))
             if a is None or b is None:
                 continue
-            second.append(abs(eq[p] - 0.5 * (eq[a] + eq[b])))
-            first.append(0.5 * abs(eq[b] - eq[a]))
+            second.append(abs(values[p] - 0.5 * (values[a] + values[b])))
+            first.append(0.5 * abs(values[b] - values[a]))
         out[axis] = (float(np.mean(second)), float(np.mean(first)))
     return h, out
 
