@@ -108,7 +108,8 @@ void read_internal_length(const CaseNode& l, MpmCase& c) {
   const bool second_gradient = c.internal_length_method == "second_gradient";
   for (const char* other : second_gradient
                                ? std::vector<const char*>{"nonlocal_weight"}
-                               : std::vector<const char*>{"softening_modulus", "yield_strain"}) {
+                               : std::vector<const char*>{"softening_modulus", "yield_strain",
+                                                          "residual_weight"}) {
     if (l.has(other))
       l.fail(other, std::string("belongs to method \"") +
                         (second_gradient ? "nonlocal" : "second_gradient") + "\"");
@@ -120,6 +121,7 @@ void read_internal_length(const CaseNode& l, MpmCase& c) {
       if (c.dimension != 2)
         l.fail("yield_strain", "is implemented in 2D only");
     }
+    c.gradient_residual_weight = l.in_range_or("residual_weight", 0.0, 100.0, 0.0);
   } else
     c.nonlocal_weight = l.in_range_or("nonlocal_weight", 0.0, 2.0, 1.0);
 }

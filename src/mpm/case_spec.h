@@ -130,6 +130,8 @@ struct MpmCase {
   double softening_modulus = 0.0;
   //! The strain ε_y across ℓ beyond which the gradient relaxes (0: unbounded).
   double gradient_yield_strain = 0.0;
+  //! The weight β of the fit's residual energy (0: none; docs/methods.md §7, the odd-even mode).
+  double gradient_residual_weight = 0.0;
   double nonlocal_weight = 1.0;
   bool has_second_gradient() const {
     return internal_length > 0.0 && internal_length_method == "second_gradient";

@@ -16,14 +16,19 @@ constexpr double kReachInCells = 1.5;
 }  // namespace
 
 template <int D>
-SecondGradient<D>::SecondGradient(double length, double softening_modulus, double yield_gradient)
-    : modulus_(modulus(length, softening_modulus)), yield_gradient_(yield_gradient) {
+SecondGradient<D>::SecondGradient(double length, double softening_modulus, double yield_gradient,
+                                  double residual_weight)
+    : modulus_(modulus(length, softening_modulus)),
+      yield_gradient_(yield_gradient),
+      residual_weight_(residual_weight) {
   if (!(modulus_ > 0.0) || !std::isfinite(modulus_))
     throw std::invalid_argument("SecondGradient: length and softening modulus must be > 0");
   if (!(yield_gradient_ >= 0.0) || !std::isfinite(yield_gradient_))
     throw std::invalid_argument("SecondGradient: the yield gradient must be >= 0");
   if (D != 2 && yield_gradient_ > 0.0)
     throw std::invalid_argument("SecondGradient: a yield gradient is 2D only");
+  if (!(residual_weight_ >= 0.0) || !std::isfinite(residual_weight_))
+    throw std::invalid_argument("SecondGradient: the residual weight must be >= 0");
 }
 
 template <int D>
@@ -37,7 +42,8 @@ namespace {
 //! Each point's neighbours and least-squares weights in the reference configuration (the
 //! points' positions at the start of the main stage): with w_q = 1 − (r/R)², M = Σ w dX dXᵀ,
 //! b_q = w_q M⁻¹ dX_q, the fit's gradient is Σ_q (f_q − f_p) b_qᵀ (exact for a linear f). A
-//! point whose neighbours do not span the plane (M singular) gets none: no gradient.
+//! point whose neighbours do not span the plane (M singular) gets none: no gradient. The
+//! residual's shares are w_q / (Σ w |dX_q|²).
 //! Why the reference and not the current positions: the forces are ∂E/∂F only, so E must
 //! depend on nothing else that moves. Weights from the current positions made E change as
 //! neighbours closed in or drew apart, work that no force did, and on the footing that
@@ -68,7 +74,7 @@ std::vector<std::vector<typename SecondGradient<D>::Neighbour>> neighbours_of(
         const double r2 = dx.squaredNorm() / (reach * reach);
         if (r2 >= 1.0)
           continue;
-        list.push_back({q, Vec::Zero()});
+        list.push_back({q, Vec::Zero(), dx, 0.0});
         offsets.push_back(dx);
         weights.push_back(1.0 - r2);
         moment += (1.0 - r2) * dx * dx.transpose();
@@ -80,8 +86,13 @@ std::vector<std::vector<typename SecondGradient<D>::Neighbour>> neighbours_of(
       continue;
     }
     const Eigen::Matrix<double, D, D> inverse = lu.inverse();
-    for (std::size_t k = 0; k < list.size(); ++k)
+    double weight_sum = 0.0;
+    for (const double w : weights)
+      weight_sum += w;
+    for (std::size_t k = 0; k < list.size(); ++k) {
       list[k].weight = weights[k] * (inverse * offsets[k]);
+      list[k].residual_share = weights[k] / (weight_sum * offsets[k].squaredNorm());
+    }
   }
   return neighbours;
 }
@@ -145,6 +156,53 @@ std::array<typename SecondGradient<D>::Matrix, D> SecondGradient<D>::elastic_gra
     }
   }
   return gradient;
+}
+
+template <int D>
+double SecondGradient<D>::residual_sum(const Particles<D>& particles, std::size_t p,
+                                       const std::vector<Neighbour>& list,
+                                       const std::array<Matrix, D>& gradient,
+                                       std::vector<Matrix>* share_out) const {
+  const Matrix fp = particles.deformation[p].template topLeftCorner<D, D>();
+  if (share_out)
+    share_out->resize(list.size());
+  double sum = 0.0;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    Matrix r = particles.deformation[list[k].point].template topLeftCorner<D, D>() - fp;
+    for (int c = 0; c < D; ++c)
+      r -= gradient[c] * list[k].offset[c];
+    sum += list[k].residual_share * r.squaredNorm();
+    if (share_out)
+      (*share_out)[k] = list[k].residual_share * r;
+  }
+  return sum;
+}
+
+template <int D>
+void SecondGradient<D>::add_residual_derivative(const Particles<D>& particles, std::size_t p,
+                                                const std::vector<Neighbour>& list, double scale,
+                                                const std::array<Matrix, D>& gradient,
+                                                std::vector<Matrix>& pi) const {
+  // E_r,p = ½ scale Σ_q s_q |r_q|², r_q = F_q − F_p − Σ_c ∇₀F_p[c] dX_q[c]: directly through
+  // F_q and F_p, and through the fit, ∂E_r,p/∂∇₀F_p[c] = −scale T[c], T[c] = Σ_q s_q r_q dX_q[c],
+  // which reaches the F as the gradient's own term does (∂∇₀F_p[c]/∂F_k = b_k[c]).
+  std::vector<Matrix> shares;
+  residual_sum(particles, p, list, gradient, &shares);
+  std::array<Matrix, D> through_fit;
+  through_fit.fill(Matrix::Zero());
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    pi[list[k].point] += scale * shares[k];
+    pi[p] -= scale * shares[k];
+    for (int c = 0; c < D; ++c)
+      through_fit[c] += shares[k] * list[k].offset[c];
+  }
+  for (const Neighbour& nb : list) {
+    Matrix share = Matrix::Zero();
+    for (int c = 0; c < D; ++c)
+      share += through_fit[c] * nb.weight[c];
+    pi[nb.point] -= scale * share;
+    pi[p] += scale * share;
+  }
 }
 
 template <int D>
@@ -218,7 +276,8 @@ void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<
   for (std::size_t p = 0; p < n; ++p) {
     if (lists[p].empty())
       continue;
-    std::array<Matrix, D> gradient = gradient_at(particles, p, lists[p]);
+    const std::array<Matrix, D> total = gradient_at(particles, p, lists[p]);
+    std::array<Matrix, D> gradient = total;
     const double scale = modulus_ * particles.volume0[p];
     if constexpr (D == 2) {
       if (!relaxed_.empty()) {
@@ -237,6 +296,8 @@ void SecondGradient<D>::force_tensors(const Particles<D>& particles, const Grid<
         pi[p] += scale * by_angle * rotation.angle_derivative;
       }
     }
+    if (residual_weight_ > 0.0)
+      add_residual_derivative(particles, p, lists[p], scale * residual_weight_, total, pi);
     for (const Neighbour& nb : lists[p]) {
       Matrix share = Matrix::Zero();
       for (int c = 0; c < D; ++c)
@@ -262,6 +323,9 @@ double SecondGradient<D>::energy(const Particles<D>& particles, const Grid<D>& g
     double squared = 0.0;
     for (int c = 0; c < D; ++c)
       squared += gradient[c].squaredNorm();
+    if (residual_weight_ > 0.0)
+      squared += residual_weight_ * residual_sum(particles, p, lists[p],
+                                                 gradient_at(particles, p, lists[p]), nullptr);
     sum += 0.5 * modulus_ * particles.volume0[p] * squared;
   }
   return sum;

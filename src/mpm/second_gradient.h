@@ -43,6 +43,16 @@ namespace mpm_lig::mpm {
 //! torque of the forces vanishes; no state of its own (F and the reference positions are the
 //! points' state, checkpointed), so a resume and any rank count give the same forces. A uniform F
 //! has ∇F = 0 exactly (differences).
+//!
+//! The fitted gradient cannot see the shortest wave: with weights odd in the offset, a strain
+//! alternating from one point column to the next has ∇₀F = 0 (a wave of number k is seen as
+//! sin(kh)/h of its gradient), so a softening material may fill with that pattern at no cost
+//! (docs/methods.md §7, the odd-even mode). With a residual weight β > 0 the energy adds what
+//! the fit leaves out, E_r = ½ D β Σ_p V⁰_p Σ_q ŵ_pq |F_q − F_p − ∇₀F_p dX_pq|² / |dX_pq|²
+//! (ŵ the fit's weights normalised to sum 1 over p's neighbours): zero for a linear F, so
+//! smooth fields keep the gradient's energy, and largest for the alternation (on a lattice of
+//! one point a cell, 2 β D / h² times its strain amplitude squared per unit volume for
+//! alternate columns). β = 0 leaves the arithmetic as it was.
 template <int D>
 class SecondGradient {
  public:
@@ -50,23 +60,27 @@ class SecondGradient {
 
   //! D [Pa m²] from the length ℓ [m] and the softening modulus G_s [Pa]; a yield gradient
   //! κ_y [1/m] > 0 bounds the stored gradient (0: unbounded).
-  SecondGradient(double length, double softening_modulus, double yield_gradient = 0.0);
+  //! β ≥ 0 weighs the fit's residual energy (0: none).
+  SecondGradient(double length, double softening_modulus, double yield_gradient = 0.0,
+                 double residual_weight = 0.0);
   static double modulus(double length, double softening_modulus);
   double modulus() const { return modulus_; }
 
   //! One neighbour q of a point p and its least-squares weight vector b: ∇₀f_p = Σ_q (f_q − f_p)
-  //! bᵀ.
+  //! bᵀ; its reference offset dX = X_q − X_p and its share ŵ / |dX|² of the residual energy.
   struct Neighbour {
     std::size_t point;
     Eigen::Matrix<double, D, 1> weight;
+    Eigen::Matrix<double, D, 1> offset;
+    double residual_share;
   };
   using NeighbourLists = std::vector<std::vector<Neighbour>>;
 
   //! S_p for every point from the points' reference positions, initial volumes and F.
   void force_tensors(const Particles<D>& particles, const Grid<D>& grid,
                      std::vector<Matrix>& out) const;
-  //! E = ½ D Σ_p V⁰_p |R_pᵀ∇₀F_p − K_p|² (K = 0 unbounded: |∇₀F_p|²) [J per unit thickness
-  //! in 2D]: what force_tensors differentiates.
+  //! E = ½ D Σ_p V⁰_p |R_pᵀ∇₀F_p − K_p|² (K = 0 unbounded: |∇₀F_p|²), plus the residual
+  //! energy E_r with β > 0 [J per unit thickness in 2D]: what force_tensors differentiates.
   double energy(const Particles<D>& particles, const Grid<D>& grid) const;
 
   //! With a yield gradient: K_p ← K_p + (1 − κ_y/|r|) r where r = R_pᵀ∇₀F_p − K_p exceeds it (after
@@ -79,6 +93,7 @@ class SecondGradient {
     dissipated_ = 0.0;
   }
   bool bounded() const { return yield_gradient_ > 0.0; }
+  double residual_weight() const { return residual_weight_; }
   //! The energy the relaxations gave up so far [J per unit thickness in 2D].
   double dissipated() const { return dissipated_; }
   //! K as D·D·D doubles a point and the dissipated energy last (a checkpoint's record), and
@@ -96,8 +111,21 @@ class SecondGradient {
   std::array<Matrix, D> elastic_gradient(const Particles<D>& particles, std::size_t p,
                                          const std::vector<Neighbour>& list) const;
 
+  //! Σ_q ŵ_q |r_q|² / |dX_q|² at p, r_q = F_q − F_p − ∇₀F_p dX_q (∇₀F_p the total gradient,
+  //! not its relaxed part's: the residual is not bounded); with `share_out` also the residuals
+  //! times their shares, ŵ_q r_q / |dX_q|², in the list's order.
+  double residual_sum(const Particles<D>& particles, std::size_t p,
+                      const std::vector<Neighbour>& list, const std::array<Matrix, D>& gradient,
+                      std::vector<Matrix>* share_out) const;
+  //! Adds ∂E_r,p/∂F to every Π (`scale` = D β V⁰_p, `gradient` the total ∇₀F_p).
+  void add_residual_derivative(const Particles<D>& particles, std::size_t p,
+                               const std::vector<Neighbour>& list, double scale,
+                               const std::array<Matrix, D>& gradient,
+                               std::vector<Matrix>& pi) const;
+
   double modulus_;
   double yield_gradient_;
+  double residual_weight_;
   std::vector<std::array<Matrix, D>> relaxed_;  // K_p; empty: all zero
   double dissipated_ = 0.0;
   mutable std::vector<Eigen::Matrix<double, D, 1>> built_for_;  // reference positions

@@ -84,7 +84,8 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
       kinematics_(kinematics_operators<D>(c)),
       second_gradient_(c.has_second_gradient() ? std::make_unique<SecondGradient<D>>(
                                                      c.internal_length, c.softening_modulus,
-                                                     c.gradient_yield_strain / c.internal_length)
+                                                     c.gradient_yield_strain / c.internal_length,
+                                                     c.gradient_residual_weight)
                                                : nullptr),
       tractions_(c.tractions),
       gravity_(Eigen::Map<const Vec>(c.gravity.data())),
@@ -122,9 +123,20 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
   // The second-gradient energy stiffens a wave of number k by D sin²(kh)/h² (its fitted
   // gradient is sin(kh)/h times the wave's, docs/methods.md §7), at most D/h²: D (π/h)² =
   // G_s (ℓ/h)², the stiffening of the continuum's shortest wave, bounds it.
-  if (second_gradient_)
+  // The fit's residual energy (β > 0) stiffens a strain alternating between neighbouring
+  // points, a spacing s = h / (points per cell) apart, by at most about 4 β D / s²: added.
+  if (second_gradient_) {
     gradient_modulus_ = c.softening_modulus * (c.internal_length / grid_.min_cell()) *
                         (c.internal_length / grid_.min_cell());
+    if (c.gradient_residual_weight > 0.0) {
+      int points_per_cell = 1;
+      for (const auto& body : c.bodies)
+        points_per_cell = std::max(points_per_cell, body.points_per_cell);
+      const double spacing = grid_.min_cell() / points_per_cell;
+      gradient_modulus_ += 4.0 * c.gradient_residual_weight * second_gradient_->modulus() /
+                           (spacing * spacing);
+    }
+  }
   if (c.fixed_time_step)
     check_fixed_time_step(c);
   dt_ = c.fixed_time_step ? c.time_step : stable_time_step(c.cfl);

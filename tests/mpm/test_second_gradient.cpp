@@ -4,7 +4,9 @@
 // force tensors with it (objectivity), and the energy does not change when the points move at
 // fixed F (the forces are its derivative in F only, so anything else it depended on would do
 // work no force accounts for); through volumetric smoothing's work-conjugate the forces still
-// do the work the energy's change accounts for.
+// do the work the energy's change accounts for. The fitted gradient is blind to a strain
+// alternating from point to point; the fit's residual energy sees it, and adds nothing to a
+// linear F.
 #include <cmath>
 #include <random>
 
@@ -22,6 +24,15 @@ using testing::plane_rotation;
 using Vec2 = Eigen::Vector2d;
 using Matrix = Eigen::Matrix2d;
 
+//! A point at rest at x with volume v and deformation f.
+void add_point(Particles<2>& particles, const Vec2& x, double v, const Mat3& f) {
+  particles.position.push_back(x);
+  particles.reference.push_back(x);
+  particles.volume.push_back(v);
+  particles.volume0.push_back(v);
+  particles.deformation.push_back(f);
+}
+
 //! Points on a 6 x 5 lattice (spacing 0.05) of a grid of 0.1 cells, F varying smoothly
 //! across them plus a little noise, so every point has a different gradient.
 Particles<2> lattice(std::mt19937& random) {
@@ -30,16 +41,13 @@ Particles<2> lattice(std::mt19937& random) {
   for (int i = 0; i < 6; ++i) {
     for (int j = 0; j < 5; ++j) {
       const Vec2 x(0.025 + 0.05 * i, 0.025 + 0.05 * j);
-      particles.position.push_back(x);
-      particles.reference.push_back(x);
-      particles.volume.push_back(0.0025 * (1.0 + noise(random)));
-      particles.volume0.push_back(particles.volume.back());
+      const double v = 0.0025 * (1.0 + noise(random));
       Mat3 f = Mat3::Identity();
       f(0, 0) += 0.1 * x[1] * x[1] + noise(random);
       f(0, 1) += 0.3 * x[1] + noise(random);
       f(1, 0) += noise(random);
       f(1, 1) -= 0.05 * x[0] + noise(random);
-      particles.deformation.push_back(f);
+      add_point(particles, x, v, f);
     }
   }
   return particles;
@@ -280,6 +288,77 @@ TEST(SecondGradient, ForcesThroughTheSmoothingsConjugateDoTheEnergysWork) {
   const double measured = (smoothed(eps) - smoothed(-eps)) / (2.0 * eps);
   EXPECT_NEAR(measured, predicted, 1e-5 * std::abs(predicted));
   EXPECT_GT(std::abs(unpulled - measured), 0.01 * std::abs(measured));
+}
+
+//! One point at the centre of every cell (h = 0.05) of a grid periodic along x and y, so every
+//! point has the same eight neighbours; F = I + sign(i, j) A.
+Particles<2> periodic_lattice(const Matrix& a, int (*sign)(int, int)) {
+  Particles<2> particles;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      Mat3 f = Mat3::Identity();
+      f.topLeftCorner<2, 2>() += sign(i, j) * a;
+      add_point(particles, Vec2(0.025 + 0.05 * i, 0.025 + 0.05 * j), 0.0025, f);
+    }
+  }
+  return particles;
+}
+
+const Grid<2> kPeriodicGrid(Vec2(0.0, 0.0), Vec2(0.4, 0.4), {8, 8}, {true, true});
+
+TEST(SecondGradient, TheFitIsBlindToAlternationAndTheResidualSeesIt) {
+  // Neighbours within 1.5 h: four at h (weight 1 − 1/2.25 = 5/9), four at √2 h (1/9). Alternate
+  // columns differ by 2A from the two neighbours along x and the four diagonal ones:
+  // Σ ŵ |r|²/|dX|² = (2·5/9·4 + 4·1/9·4/2) / (8/3) |A|²/h² = 2 |A|²/h²; a checkerboard differs
+  // from the four at h: (4·5/9·4) / (8/3) = 10/3 |A|²/h². E_r = ½ D β V⁰ that a point.
+  Matrix a;
+  a << 0.002, 0.01, 0.004, -0.003;
+  const double h = 0.05, volume = 0.0025, beta = 1.5, points = 64.0;
+  const SecondGradient<2> fitted(0.1, 1e6), residual(0.1, 1e6, 0.0, beta);
+  const double d = fitted.modulus();
+  struct Pattern {
+    int (*sign)(int, int);
+    double sum;
+  };
+  const Pattern patterns[] = {{[](int i, int) { return i % 2 ? 1 : -1; }, 2.0},
+                              {[](int i, int j) { return (i + j) % 2 ? 1 : -1; }, 10.0 / 3.0}};
+  for (const Pattern& pattern : patterns) {
+    const Particles<2> particles = periodic_lattice(a, pattern.sign);
+    const double expected = points * 0.5 * d * beta * volume * pattern.sum * a.squaredNorm() / (h * h);
+    EXPECT_NEAR(fitted.energy(particles, kPeriodicGrid), 0.0, 1e-12 * expected);
+    EXPECT_NEAR(residual.energy(particles, kPeriodicGrid), expected, 1e-10 * expected);
+    std::vector<Matrix> s;
+    fitted.force_tensors(particles, kPeriodicGrid, s);
+    for (const Matrix& sp : s)
+      EXPECT_NEAR(sp.norm(), 0.0, 1e-9);
+  }
+}
+
+TEST(SecondGradient, TheResidualAddsNothingToALinearDeformation) {
+  std::mt19937 random(5);
+  Particles<2> particles = lattice(random);
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const Vec2 x = particles.reference[p];
+    particles.deformation[p] = Mat3::Identity();
+    particles.deformation[p](0, 1) += 0.3 * x[1] - 0.1 * x[0];
+    particles.deformation[p](1, 1) += 0.2 * x[0];
+  }
+  const double e = SecondGradient<2>(0.1, 1e6).energy(particles, kGrid);
+  EXPECT_GT(e, 0.0);
+  EXPECT_NEAR(SecondGradient<2>(0.1, 1e6, 0.0, 2.0).energy(particles, kGrid), e, 1e-10 * e);
+}
+
+TEST(SecondGradient, WithTheResidualForcesAreTheEnergysDerivativeAndObjective) {
+  std::mt19937 random(13);
+  const Particles<2> particles = lattice(random);
+  const SecondGradient<2> energy(0.1, 1e6, 0.0, 1.0);
+  EXPECT_GT(energy.energy(particles, kGrid), SecondGradient<2>(0.1, 1e6).energy(particles, kGrid));
+  expect_forces_are_the_derivative(energy, particles, random);
+  expect_rotation_changes_nothing(energy, particles);
+  SecondGradient<2> bounded(0.1, 1e6, 0.1, 1.0);
+  bounded.relax(particles, kGrid);
+  expect_forces_are_the_derivative(bounded, particles, random);
+  EXPECT_THROW(SecondGradient<2>(0.1, 1e6, 0.0, -1.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -3,21 +3,28 @@ width of its shear band and its load-displacement curve (docs/methods.md §7).
 
 usage: softening_band.py -o OUT_DIR [--mpm-lig build/mpm_lig] [--length L]
                          [--refinements 2 4 8] [--weights M ...] [--yield-strains E ...]
-                         [--dpi N]
+                         [--residual-weights B ...] [--points-per-cell 1|2]
+                         [--imperfection cell|alternate] [--dpi N]
 
 The layer: 0.5 m high, periodic along x, von Mises (E 10 MPa, nu 0.3, q_y 100 kPa) softening
 linearly with the deviatoric plastic strain (H = 0.1 x 3G) to half its yield stress; its base
 fixed, its top pushed sideways to 0.04 m over 1 s (a ramp of 0.05 s), damping 0.1. One cell
-just above mid-height is 2 % weaker: the imperfection, one cell wide on every mesh. For each
+just above mid-height is 2 % weaker: the imperfection, one cell wide on every mesh (with
+--imperfection alternate every other row of cells is, a pattern of the shortest wave). For each
 mesh h = L/n (n in --refinements, L the length, default 0.1 m) the layer runs without an
 internal length, with `analysis.internal_length` L by the second gradient (its softening
 modulus the layer's, G/9), with --yield-strains by the bounded second gradient at each
-yield strain ε_y, and, with --weights, by the non-local average at each weight m. Measured on
+yield strain ε_y, with --residual-weights by the second gradient with its fit's residual energy
+at each weight β, and, with --weights, by the non-local average at each weight m. With
+--points-per-cell 1 (default 2) a strain alternating from one point row to the next is one the
+fitted gradient cannot see (docs/methods.md §7, the odd-even mode). Measured on
 each run: the band's width while it forms, from the peak to half-softening, and late, from
 there to the end (the extent along y where the plastic strain's increment exceeds half its
 largest value, interpolated between point rows), the peak
 shear stress and the mean shear stress over the last half of the displacement (the top's
-reaction over the layer's width). Prints a table; writes OUT_DIR/softening_band.json and
+reaction over the layer's width), and how much of the band's increment alternates from row to
+row (the mean |second difference| over the mean |first difference| of its row profile where
+it exceeds a tenth of its largest value: well below 1 for a smooth band). Prints a table; writes OUT_DIR/softening_band.json and
 OUT_DIR/softening_band.png (shear stress against displacement, plastic-strain profiles).
 Exit 0 done, 1 a run failed (its log named), 2 bad input (before anything runs).
 """
@@ -55,9 +62,11 @@ SOFTENING_TANGENT = SHEAR * (SOFTENING / 3.0) / (SHEAR - SOFTENING / 3.0)
 # gradient.
 
 
-def layer_case(cells_y, length, method, weight, yield_strain=None):
+def layer_case(cells_y, length, method, weight, yield_strain=None, residual_weight=None,
+               points_per_cell=2, alternate=False):
     """The layer on `cells_y` cells of height (two columns, periodic along x); with an
-    internal length by `method` when `length` is given (bounded at `yield_strain`)."""
+    internal length by `method` when `length` is given (bounded at `yield_strain`, with the
+    fit's residual weighed by `residual_weight`)."""
     h = HEIGHT / cells_y
     width = 2.0 * h
     weak = cells_y // 2  # the weak cell: rows [weak h, (weak + 1) h]
@@ -74,6 +83,8 @@ def layer_case(cells_y, length, method, weight, yield_strain=None):
                                        "softening_modulus": SOFTENING_TANGENT}
         if yield_strain:
             analysis["internal_length"]["yield_strain"] = yield_strain
+        if residual_weight:
+            analysis["internal_length"]["residual_weight"] = residual_weight
     return {
         "title": f"softening layer, h = {h:g} m" + (f", internal length {length:g} m, {method}"
                                                     if length else ", local"),
@@ -83,11 +94,12 @@ def layer_case(cells_y, length, method, weight, yield_strain=None):
                  "periodic": ["x"]},
         "materials": [dict(material, id=0, yield_stress=YIELD),
                       dict(material, id=1, yield_stress=WEAKER * YIELD)],
-        "bodies": [
-            {"material": 0, "box": {"min": [0, 0], "max": [width, weak * h]}},
-            {"material": 1, "box": {"min": [0, weak * h], "max": [width, (weak + 1) * h]}},
-            {"material": 0, "box": {"min": [0, (weak + 1) * h], "max": [width, HEIGHT]}},
-        ],
+        "bodies": [dict(body, points_per_cell=points_per_cell) for body in (
+            [{"material": k % 2, "box": {"min": [0, k * h], "max": [width, (k + 1) * h]}}
+             for k in range(cells_y)] if alternate else [
+                {"material": 0, "box": {"min": [0, 0], "max": [width, weak * h]}},
+                {"material": 1, "box": {"min": [0, weak * h], "max": [width, (weak + 1) * h]}},
+                {"material": 0, "box": {"min": [0, (weak + 1) * h], "max": [width, HEIGHT]}}])],
         "boundary_conditions": [
             {"type": "fixed", "nodes": {"face": "y-"}},
             {"type": "velocity", "direction": "y", "velocity": 0.0, "nodes": {"face": "y+"}},
@@ -107,7 +119,9 @@ def output_every(case):
     modulus = lame + 2.0 * SHEAR
     gradient = case["analysis"].get("internal_length", {})
     if "softening_modulus" in gradient:
-        modulus += gradient["softening_modulus"] * (gradient["length"] / h) ** 2
+        modulus += gradient["softening_modulus"] * (gradient["length"] / h) ** 2 * (
+            1.0 + 4.0 * gradient.get("residual_weight", 0.0)
+            * case["bodies"][0]["points_per_cell"] ** 2 / np.pi ** 2)
     dt = case["analysis"]["time_step"]["cfl"] * h / np.sqrt(modulus / DENSITY)
     return max(1, int(DURATION / dt / 200))
 
@@ -189,6 +203,18 @@ def band_width(y, strain):
     return float(top - bottom), rows, profile
 
 
+def alternation(profile):
+    """Mean |second difference| over mean |first difference| of a row profile, over the rows
+    where it exceeds a tenth of its largest value."""
+    inside = np.nonzero(profile > 0.1 * profile.max())[0]
+    inside = inside[(inside > 0) & (inside < len(profile) - 1)]
+    if len(inside) == 0:
+        return 0.0
+    second = np.abs(profile[inside] - 0.5 * (profile[inside - 1] + profile[inside + 1]))
+    first = 0.5 * np.abs(profile[inside + 1] - profile[inside - 1])
+    return float(second.mean() / max(first.mean(), 1e-300))
+
+
 def summarise(result):
     width, rows, profile = band_width(result["y"], result["increment"])
     late, _, _ = band_width(result["y_late"], result["increment_late"])
@@ -201,7 +227,7 @@ def summarise(result):
             "mean_stress_post_peak": float(tau[window].mean()),
             "mean_stress_late": float(tau[u >= 0.5 * DISPLACEMENT].mean()),
             "gradient_energy_share": result["gradient_energy_share"],
-            "largest_increment": float(profile.max())}
+            "largest_increment": float(profile.max()), "alternation": alternation(profile)}
 
 
 def main():
@@ -219,6 +245,14 @@ def main():
     p.add_argument("--yield-strains", type=cli.positive, nargs="*", default=[],
                    help="also the second gradient bounded at these yield strains ε_y "
                    "(analysis.internal_length.yield_strain; default: none)")
+    p.add_argument("--residual-weights", type=cli.positive, nargs="*", default=[],
+                   help="also the second gradient with its fit's residual energy at these "
+                   "weights β (analysis.internal_length.residual_weight; default: none)")
+    p.add_argument("--points-per-cell", type=int, choices=(1, 2), default=2,
+                   help="the points per cell along each axis (default 2; 1: the odd-even mode)")
+    p.add_argument("--imperfection", choices=("cell", "alternate"), default="cell",
+                   help="the weaker cell just above mid-height (default) or every other row "
+                   "of cells")
     p.add_argument("--dpi", type=cli.dpi, default=150)
     a = p.parse_args()
     if a.length > 0.1:
@@ -238,21 +272,26 @@ def main():
     if os.path.isdir(out) and os.listdir(out):
         raise InputError(f"{out}: not empty (choose a new folder)")
     os.makedirs(out, exist_ok=True)
-    variants = [("local", None, None, None, None),
-                ("second_gradient", a.length, "second_gradient", None, None)]
-    variants += [(f"bounded_e{e:g}", a.length, "second_gradient", None, e)
+    variants = [("local", None, None, None, None, None),
+                ("second_gradient", a.length, "second_gradient", None, None, None)]
+    variants += [(f"bounded_e{e:g}", a.length, "second_gradient", None, e, None)
                  for e in a.yield_strains]
-    variants += [(f"nonlocal_m{m:g}", a.length, "nonlocal", m, None) for m in a.weights]
+    variants += [(f"residual_b{b:g}", a.length, "second_gradient", None, None, b)
+                 for b in a.residual_weights]
+    variants += [(f"nonlocal_m{m:g}", a.length, "nonlocal", m, None, None) for m in a.weights]
     report = {"length": a.length, "height": HEIGHT, "displacement": DISPLACEMENT,
               "yield_stress": YIELD, "softening_modulus": SOFTENING,
-              "residual_yield_stress": RESIDUAL, "runs": {}}
+              "residual_yield_stress": RESIDUAL, "points_per_cell": a.points_per_cell,
+              "imperfection": a.imperfection,
+              "runs": {}}
     curves = {}
-    for name, length, method, weight, yield_strain in variants:
+    for name, length, method, weight, yield_strain, residual in variants:
         for cells, n in zip(meshes, a.refinements):
             key = f"{name}_h{n}"
             print(f"running {key}: h = length / {n} ({cells} cells)", flush=True)
-            result = run_layer(mpm_lig, layer_case(cells, length, method, weight, yield_strain),
-                               os.path.join(out, key))
+            case = layer_case(cells, length, method, weight, yield_strain, residual,
+                              a.points_per_cell, a.imperfection == "alternate")
+            result = run_layer(mpm_lig, case, os.path.join(out, key))
             curves[key] = result
             report["runs"][key] = dict(summarise(result), variant=name, refinement=n,
                                        cell=HEIGHT / cells)
@@ -266,15 +305,15 @@ def print_table(report):
     length = report["length"]
     print("| run | h | band width / length | band width / h | late band width / length | "
           "peak tau [kPa] | mean tau over the quarter after the peak [kPa] | "
-          "mean tau, last half [kPa] | gradient energy / work at the end |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "mean tau, last half [kPa] | gradient energy / work at the end | alternation |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for key, r in report["runs"].items():
         share = r["gradient_energy_share"]
         print(f"| {r['variant']} | length/{r['refinement']} | {r['band_width'] / length:.2f} | "
               f"{r['band_width'] / r['cell']:.2f} | {r['band_width_late'] / length:.2f} | "
               f"{r['peak_stress'] / 1e3:.2f} | "
               f"{r['mean_stress_post_peak'] / 1e3:.2f} | {r['mean_stress_late'] / 1e3:.2f} | "
-              f"{'-' if share is None else f'{share:.3f}'} |")
+              f"{'-' if share is None else f'{share:.3f}'} | {r['alternation']:.2f} |")
 
 
 def picture(path, report, curves, dpi):
