@@ -324,7 +324,8 @@ TEST(SecondGradient, TheFitIsBlindToAlternationAndTheResidualSeesIt) {
                               {[](int i, int j) { return (i + j) % 2 ? 1 : -1; }, 10.0 / 3.0}};
   for (const Pattern& pattern : patterns) {
     const Particles<2> particles = periodic_lattice(a, pattern.sign);
-    const double expected = points * 0.5 * d * beta * volume * pattern.sum * a.squaredNorm() / (h * h);
+    const double expected =
+        points * 0.5 * d * beta * volume * pattern.sum * a.squaredNorm() / (h * h);
     EXPECT_NEAR(fitted.energy(particles, kPeriodicGrid), 0.0, 1e-12 * expected);
     EXPECT_NEAR(residual.energy(particles, kPeriodicGrid), expected, 1e-10 * expected);
     std::vector<Matrix> s;

@@ -24,8 +24,9 @@ largest value, interpolated between point rows), the peak
 shear stress and the mean shear stress over the last half of the displacement (the top's
 reaction over the layer's width), and how much of the band's increment alternates from row to
 row (the mean |second difference| over the mean |first difference| of its row profile where
-it exceeds a tenth of its largest value: well below 1 for a smooth band). Prints a table; writes OUT_DIR/softening_band.json and
-OUT_DIR/softening_band.png (shear stress against displacement, plastic-strain profiles).
+it exceeds a tenth of its largest value: well below 1 for a smooth band). Prints a table;
+writes OUT_DIR/softening_band.json and OUT_DIR/softening_band.png (shear stress against
+displacement, plastic-strain profiles).
 Exit 0 done, 1 a run failed (its log named), 2 bad input (before anything runs).
 """
 from mpm_lig_post.requirements import require
