@@ -6,7 +6,10 @@ smooth over a few cells gives a ratio well below 1; a field alternating from one
 next (period 2 h) gives a large one, with a first difference near zero.
 
 usage: odd_even.py MPM_RUN[:LABEL] ... [--at 0.1 0.2 0.3] [--region X0 X1 Y0 Y1]
-       [--quantity eq|exy] [--speed 0.5] [--width 0.2] [--json OUT.json]
+       [--quantity eq|exy] [--speed 0.5] [--width 0.2] [--json OUT.json] [--growth]
+
+--growth prints instead, for every output of each run, the mean |second difference| along x
+(the alternation's amplitude) and its growth over the output before, per unit of time.
 
 --quantity exy measures the logarithmic shear strain (results.h5 `strain`, Voigt xy) instead
 of eps_q.
@@ -54,6 +57,34 @@ def ratios(group, region, quantity):
     return h, out
 
 
+def growth(args):
+    rows = []
+    print("| run | step | time [ms] | s/B | second difference along x | growth rate [1/ms] |")
+    print("|---|---|---|---|---|---|")
+    for item in args.runs:
+        run, _, label = item.partition(":")
+        with h5py.File(f"{run}/results.h5", "r") as f:
+            steps = sorted((k for k in f if k.startswith("step_")),
+                           key=lambda k: f[k].attrs["time"])
+            before = None
+            for k in steps:
+                t = f[k].attrs["time"]
+                if t <= 0.0:
+                    continue
+                amplitude = ratios(f[k], args.region, args.quantity)[1]["x"][0]
+                rate = "" if before is None else \
+                    f"{np.log(amplitude / before[1]) / ((t - before[0]) * 1e3):.3f}"
+                print(f"| {label or run} | {k[5:]} | {t * 1e3:.3f} | "
+                      f"{args.speed * t / args.width:.4f} | {amplitude:.3e} | {rate} |")
+                rows.append({"run": label or run, "step": int(k[5:]), "time": float(t),
+                             "second_difference_x": float(amplitude)})
+                before = (t, amplitude)
+    if args.json:
+        with open(args.json, "w") as out:
+            json.dump({"region": args.region, "quantity": args.quantity, "rows": rows}, out,
+                      indent=1)
+
+
 def main():
     a = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     a.add_argument("runs", nargs="+", metavar="MPM_RUN[:LABEL]")
@@ -63,7 +94,11 @@ def main():
     a.add_argument("--speed", type=float, default=0.5)
     a.add_argument("--width", type=float, default=0.2)
     a.add_argument("--json")
+    a.add_argument("--growth", action="store_true")
     args = a.parse_args()
+    if args.growth:
+        growth(args)
+        return
     rows = []
     print("| run | s/B | h [m] | along x: second / first difference (ratio) "
           "| along y: second / first difference (ratio) |")
