@@ -16,13 +16,17 @@ rve::RveSpec read_rve(const CaseNode& node) {
   return rve::parse_rve_spec(node.child("rve"));
 }
 
-int read_packing_count(const CaseNode& node, const rve::RveSpec& spec) {
+PackingOrder read_packing_order(const CaseNode& node, const rve::RveSpec& spec) {
   const int count = node.get_or<int>("packings", 1);
   if (count < 1)
     node.fail("packings", "must be >= 1");
   if (!spec.restart_file.empty() && count != 1)
     node.fail("packings", "must be 1 when rve.restart_file gives the packing");
-  return count;
+  PackingOrder order;
+  order.count = static_cast<std::size_t>(count);
+  order.scattered = node.choice_or("packing_order", {"cyclic", "scattered"}, "cyclic") ==
+                    "scattered";
+  return order;
 }
 
 int read_ranks_per_rve(const CaseNode& node) {
@@ -43,7 +47,7 @@ Spec read_optional(const CaseNode& node, const char* key, Spec (*parse)(const Ca
 DemRveMaterial::DemRveMaterial(const CaseNode& node)
     : spec_(read_rve(node)),
       path_(node.path()),
-      packing_count_(read_packing_count(node, spec_)),
+      packing_order_(read_packing_order(node, spec_)),
       ranks_per_rve_(read_ranks_per_rve(node)),
       selection_(read_optional(node, "quiet", &parse_quiet),
                  read_optional(node, "start_as_continuum", &parse_continuum_start),
@@ -63,8 +67,8 @@ void DemRveMaterial::check_run(std::size_t points, int ranks, const std::string&
     throw CaseError(path_ + ".ranks_per_rve", std::to_string(ranks_per_rve_) +
                                                   " does not divide the " + std::to_string(ranks) +
                                                   " MPI ranks of this run");
-  if (points > 0 && static_cast<std::size_t>(packing_count_) > points)
-    throw CaseError(path_ + ".packings", std::to_string(packing_count_) + " packings for " +
+  if (points > 0 && packing_order_.count > points)
+    throw CaseError(path_ + ".packings", std::to_string(packing_order_.count) + " packings for " +
                                              std::to_string(points) +
                                              " material points: some would never be used");
   const std::string unusable = dem::unusable_file_name(run_dir);
@@ -87,7 +91,8 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   MPI_Comm_rank(context.comm, &rank_);
   work_dir_ = context.work_dir;
   rves_ = std::make_unique<OwnedRves>(spec_, ranks_per_rve_, PointLabel{path_, rank_}, context);
-  packings_ = prepare_packings(spec_, packing_count_, ranks_per_rve_, path_, context);
+  packings_ = prepare_packings(spec_, static_cast<int>(packing_order_.count), ranks_per_rve_,
+                               path_, context);
   cost_.preparation_seconds += MPI_Wtime() - start;
 }
 
@@ -136,7 +141,7 @@ void DemRveMaterial::set_stress(std::size_t /*point*/, const Mat3& /*sigma*/) {
 }
 
 Mat3 DemRveMaterial::initial_stress(std::size_t point) const {
-  return packings_.at(packing_of(point, packings_.size())).stress;
+  return packings_.at(packing_order_.of(point)).stress;
 }
 
 void DemRveMaterial::create_rves() {
@@ -147,7 +152,7 @@ void DemRveMaterial::create_rves() {
   results_.start(points_);
   for (std::size_t p = 0; p < points_; ++p)
     results_.stress[p] = initial_stress(p);
-  rves_->clone(packings_);
+  rves_->clone(packings_, packing_order_);
   start_ledgers();
   schedule_.start_record(rank_, work_dir_, points_, false, updates_);
   cost_.simulations = points_;
@@ -161,7 +166,8 @@ void DemRveMaterial::start_ledgers() {
     p = mean_pressure(packings_.front().stress, spec_.dimension);
   work_.start(points_, static_cast<double>(spec_.grains),
               spec_.substeps.fixed > 0 ? 0 : spec_.substeps.max, p);
-  selection_.start(points_, spec_.dimension, spec_.substeps.pressure_floor, packings_);
+  selection_.start(points_, spec_.dimension, spec_.substeps.pressure_floor, packings_,
+                   packing_order_);
 }
 
 void DemRveMaterial::update(const materials::MaterialStep& step, std::vector<Mat3>& stress) {

@@ -18,11 +18,11 @@ namespace mpm_lig::coupling {
 
 //! The material law of a point is its own DEM packing (the "dem_rve" material).
 //!
-//! Case node: {"type": "dem_rve", "rve": {RVE spec}, "packings": K, "ranks_per_rve": g,
-//! "quiet": {QuietSpec}, "start_as_continuum": {ContinuumStartSpec}, "steady_flow":
-//! {SteadyFlowSpec}, "balance": {BalanceSpec}}.
+//! Case node: {"type": "dem_rve", "rve": {RVE spec}, "packings": K, "packing_order":
+//! "cyclic"|"scattered", "ranks_per_rve": g, "quiet": {QuietSpec}, "start_as_continuum":
+//! {ContinuumStartSpec}, "steady_flow": {SteadyFlowSpec}, "balance": {BalanceSpec}}.
 //! `prepare()` consolidates K packings (seeds rve.seed + k) or takes `rve.restart_file`;
-//! point i is cloned from packing i mod K. The MPM is replicated on every rank, so every
+//! point i is cloned from packing PackingOrder::of(i). The MPM is replicated on every rank, so every
 //! rank calls update() with the same batch. An update goes through its parts in order:
 //! PointSelection (which points run DEM: quiet points), RveSchedule (predicted costs, the
 //! balancer's moves, the cost record), OwnedRves (this rank group's RVEs deformed, moved,
@@ -91,7 +91,7 @@ class DemRveMaterial final : public materials::Material, public materials::Micro
 
   rve::RveSpec spec_;
   std::string path_;
-  int packing_count_ = 1;
+  PackingOrder packing_order_;
   int ranks_per_rve_ = 1;
   int rank_ = 0;
   std::string work_dir_;

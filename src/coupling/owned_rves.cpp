@@ -45,10 +45,10 @@ void OwnedRves::deal(std::size_t points) {
   rves_.resize(points);
 }
 
-void OwnedRves::clone(const std::vector<Packing>& packings) {
+void OwnedRves::clone(const std::vector<Packing>& packings, const PackingOrder& order) {
   for (const std::size_t p : layout_->owned()) {
     rves_[p] = or_end_job(label_(p) + " not cloned", [&] {
-      return rve::Rve::from_restart(spec_, packings[packing_of(p, packings.size())].restart_file,
+      return rve::Rve::from_restart(spec_, packings[order.of(p)].restart_file,
                                     layout_->group_comm(), label_(p));
     });
   }

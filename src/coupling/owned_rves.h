@@ -45,8 +45,8 @@ class OwnedRves {
   //! Collective: `points` RVEs dealt to the rank groups (RveLayout), none created yet.
   void deal(std::size_t points);
   bool dealt() const { return layout_ != nullptr; }
-  //! Collective: every owned point's RVE cloned from its packing (point i ← packing i mod K).
-  void clone(const std::vector<Packing>& packings);
+  //! Collective: every owned point's RVE cloned from its packing (`order`).
+  void clone(const std::vector<Packing>& packings, const PackingOrder& order);
   const RveLayout& layout() const { return *layout_; }
   RveLayout& layout() { return *layout_; }
 

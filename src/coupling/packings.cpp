@@ -1,6 +1,7 @@
 #include "coupling/packings.h"
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 
@@ -13,6 +14,17 @@
 #include "rve/rve.h"
 
 namespace mpm_lig::coupling {
+
+std::size_t PackingOrder::of(std::size_t point) const {
+  if (!scattered)
+    return point % count;
+  // splitmix64's finaliser: neighbouring indices land on unrelated packings.
+  std::uint64_t z = static_cast<std::uint64_t>(point) + 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return static_cast<std::size_t>(z % count);
+}
 namespace {
 
 //! Strain of the uniaxial probe that measures a packing's constrained modulus: small enough

@@ -19,10 +19,17 @@ struct Packing {
   double lateral_modulus = 0.0;  //!< measured lateral stress change per axial strain [Pa]
 };
 
-//! The packing point `point` is cloned from, of `packings`: point i ← packing i mod K.
-inline std::size_t packing_of(std::size_t point, std::size_t packings) {
-  return point % packings;
-}
+//! Which of K packings each point is cloned from (the material's `packing_order`): cyclic,
+//! point i ← packing i mod K; scattered, point i ← packing h(i) mod K, h a fixed integer hash
+//! (the same on every machine and rank count). The points are numbered along x first, so
+//! cyclic with an even number of points a row clones alternate columns from alternate
+//! packings: an imperfection at the shortest wave, where the internal length's fitted
+//! gradient is blind (docs/methods.md §7, the odd-even mode).
+struct PackingOrder {
+  std::size_t count = 1;
+  bool scattered = false;
+  std::size_t of(std::size_t point) const;
+};
 
 //! Collective over `context.comm`: the `count` packings of a dem_rve material (its case path
 //! `path`), spread over rank groups of `ranks_per_rve` like RVEs are. Each is generated with

@@ -3,11 +3,11 @@
 namespace mpm_lig::coupling {
 
 void PointSelection::start(std::size_t points, int dimension, double stress_floor,
-                           const std::vector<Packing>& packings) {
+                           const std::vector<Packing>& packings, const PackingOrder& order) {
   quiet_.start(points, quiet_spec_, dimension, stress_floor, continuum_start_spec_);
   flow_.start(points, flow_spec_, dimension, stress_floor);
   for (std::size_t point = 0; point < points; ++point) {
-    const Packing& packing = packings[packing_of(point, packings.size())];
+    const Packing& packing = packings[order.of(point)];
     quiet_.set_packing(point, packing.stress, packing.wave_modulus, packing.lateral_modulus);
     flow_.set_packing(
         point, mean_pressure(packing.stress, dimension),

@@ -37,10 +37,10 @@ class PointSelection {
                  const SteadyFlowSpec& steady_flow)
       : quiet_spec_(quiet), continuum_start_spec_(continuum_start), flow_spec_(steady_flow) {}
 
-  //! `points` points of a `dimension`-D packing, point i cloned from packings[i mod K];
+  //! `points` points of a `dimension`-D packing, point i cloned from packings[order.of(i)];
   //! `stress_floor` [Pa] as QuietPoints::start.
   void start(std::size_t points, int dimension, double stress_floor,
-             const std::vector<Packing>& packings);
+             const std::vector<Packing>& packings, const PackingOrder& order);
   //! This update's batch of a material of `points` points: books step.dF with the quiet and
   //! the flowing points.
   DemBatch select(std::size_t points, const materials::MaterialStep& step);
