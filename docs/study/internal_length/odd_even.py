@@ -9,7 +9,11 @@ usage: odd_even.py MPM_RUN[:LABEL] ... [--at 0.1 0.2 0.3] [--region X0 X1 Y0 Y1]
        [--quantity eq|exy] [--speed 0.5] [--width 0.2] [--json OUT.json] [--growth]
 
 --growth prints instead, for every output of each run, the mean |second difference| along x
-(the alternation's amplitude) and its growth over the output before, per unit of time.
+and its growth over the output before, per unit of time, and the alternating component along
+x: over each row of points in the region |mean of (-1)^i (v_i - (v_{i-1} + v_{i+1}) / 2) / 2|,
+averaged over the rows (A for a pattern A (-1)^i from column to column, nothing for a linear
+trend; for values independent from point to point about their spread over the square root
+of the row's points).
 
 --quantity exy measures the logarithmic shear strain (results.h5 `strain`, Voigt xy) instead
 of eps_q.
@@ -57,10 +61,32 @@ def ratios(group, region, quantity):
     return h, out
 
 
+def alternating_component(group, region, quantity):
+    """Mean over the region's rows of |mean over the row of (-1)^i (v_i - (v_{i-1} + v_{i+1})/2)
+    / 2|: A for a pattern A (-1)^i, nothing for a linear trend."""
+    reference = group["positions"][:, :2] - group["displacement"][:, :2]
+    values = group["strain"][:, 3] if quantity == "exy" else \
+        group["deviatoric_strain"][()].ravel()
+    h = np.min(np.diff(np.unique(np.round(reference[:, 0], 9))))
+    index = {(int(round(x / h - 0.5)), int(round(y / h - 0.5))): p
+             for p, (x, y) in enumerate(reference)}
+    x0, x1, y0, y1 = region
+    by_row = {}
+    for (i, j), p in index.items():
+        x, y = reference[p]
+        a, b = index.get((i - 1, j)), index.get((i + 1, j))
+        if not (x0 <= x <= x1 and y0 <= y <= y1) or a is None or b is None:
+            continue
+        sign = 1.0 if i % 2 == 0 else -1.0
+        by_row.setdefault(j, []).append(sign * (values[p] - 0.5 * (values[a] + values[b])) / 2)
+    return float(np.mean([abs(np.mean(v)) for v in by_row.values()]))
+
+
 def growth(args):
     rows = []
-    print("| run | step | time [ms] | s/B | second difference along x | growth rate [1/ms] |")
-    print("|---|---|---|---|---|---|")
+    print("| run | step | time [ms] | s/B | second difference along x | growth rate [1/ms] "
+          "| alternating component |")
+    print("|---|---|---|---|---|---|---|")
     for item in args.runs:
         run, _, label = item.partition(":")
         with h5py.File(f"{run}/results.h5", "r") as f:
@@ -72,12 +98,15 @@ def growth(args):
                 if t <= 0.0:
                     continue
                 amplitude = ratios(f[k], args.region, args.quantity)[1]["x"][0]
+                alternating = alternating_component(f[k], args.region, args.quantity)
                 rate = "" if before is None else \
                     f"{np.log(amplitude / before[1]) / ((t - before[0]) * 1e3):.3f}"
                 print(f"| {label or run} | {k[5:]} | {t * 1e3:.3f} | "
-                      f"{args.speed * t / args.width:.4f} | {amplitude:.3e} | {rate} |")
+                      f"{args.speed * t / args.width:.4f} | {amplitude:.3e} | {rate} | "
+                      f"{alternating:.3e} |")
                 rows.append({"run": label or run, "step": int(k[5:]), "time": float(t),
-                             "second_difference_x": float(amplitude)})
+                             "second_difference_x": float(amplitude),
+                             "alternating_component_x": alternating})
                 before = (t, amplitude)
     if args.json:
         with open(args.json, "w") as out:
