@@ -22,8 +22,8 @@ namespace mpm_lig::coupling {
 //! "cyclic"|"scattered", "ranks_per_rve": g, "quiet": {QuietSpec}, "start_as_continuum":
 //! {ContinuumStartSpec}, "steady_flow": {SteadyFlowSpec}, "balance": {BalanceSpec}}.
 //! `prepare()` consolidates K packings (seeds rve.seed + k) or takes `rve.restart_file`;
-//! point i is cloned from packing PackingOrder::of(i). The MPM is replicated on every rank, so every
-//! rank calls update() with the same batch. An update goes through its parts in order:
+//! point i is cloned from packing PackingOrder::of(i). The MPM is replicated on every rank, so
+//! every rank calls update() with the same batch. An update goes through its parts in order:
 //! PointSelection (which points run DEM: quiet points), RveSchedule (predicted costs, the
 //! balancer's moves, the cost record), OwnedRves (this rank group's RVEs deformed, moved,
 //! saved), gather_results (the owners' stresses to every rank in point order, PointResults);
