@@ -8,8 +8,9 @@ usage: check_softening_band.py WORK MPM_LIG
   on every mesh (its width follows h); with the second gradient it is L wide within 20 % on
   h = L/4 and L/8 and the two agree within 20 % (the internal-length issue's target); and
   after the peak the layer with the length carries more than without (the band dissipates
-  over L, not over one cell); history.csv has the gradient energy with the second gradient only, a part of the top's work. The table's
-  numbers for all three meshes are in docs/methods.md §7;
+  over L, not over one cell); history.csv has the gradient energy with the second gradient
+  only, a part of the top's work. The table's numbers for all three meshes are in
+  docs/methods.md §7;
 - with one point per cell and the fit's residual energy (--residual-weights 1) the band is
   still L wide within 20 % on L/4 and L/8: the residual leaves a smooth band's width alone.
 """
