@@ -24,8 +24,8 @@ PackingOrder read_packing_order(const CaseNode& node, const rve::RveSpec& spec) 
     node.fail("packings", "must be 1 when rve.restart_file gives the packing");
   PackingOrder order;
   order.count = static_cast<std::size_t>(count);
-  order.scattered = node.choice_or("packing_order", {"cyclic", "scattered"}, "cyclic") ==
-                    "scattered";
+  order.scattered =
+      node.choice_or("packing_order", {"cyclic", "scattered"}, "cyclic") == "scattered";
   return order;
 }
 
@@ -91,8 +91,8 @@ void DemRveMaterial::prepare(const materials::MaterialContext& context) {
   MPI_Comm_rank(context.comm, &rank_);
   work_dir_ = context.work_dir;
   rves_ = std::make_unique<OwnedRves>(spec_, ranks_per_rve_, PointLabel{path_, rank_}, context);
-  packings_ = prepare_packings(spec_, static_cast<int>(packing_order_.count), ranks_per_rve_,
-                               path_, context);
+  packings_ = prepare_packings(spec_, static_cast<int>(packing_order_.count), ranks_per_rve_, path_,
+                               context);
   cost_.preparation_seconds += MPI_Wtime() - start;
 }
 

@@ -106,10 +106,10 @@ void read_internal_length(const CaseNode& l, MpmCase& c) {
   c.internal_length_method =
       l.choice_or("method", {"second_gradient", "nonlocal"}, "second_gradient");
   const bool second_gradient = c.internal_length_method == "second_gradient";
-  for (const char* other : second_gradient
-                               ? std::vector<const char*>{"nonlocal_weight"}
-                               : std::vector<const char*>{"softening_modulus", "yield_strain",
-                                                          "residual_weight"}) {
+  for (const char* other :
+       second_gradient
+           ? std::vector<const char*>{"nonlocal_weight"}
+           : std::vector<const char*>{"softening_modulus", "yield_strain", "residual_weight"}) {
     if (l.has(other))
       l.fail(other, std::string("belongs to method \"") +
                         (second_gradient ? "nonlocal" : "second_gradient") + "\"");

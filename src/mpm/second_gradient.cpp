@@ -324,8 +324,8 @@ double SecondGradient<D>::energy(const Particles<D>& particles, const Grid<D>& g
     for (int c = 0; c < D; ++c)
       squared += gradient[c].squaredNorm();
     if (residual_weight_ > 0.0)
-      squared += residual_weight_ * residual_sum(particles, p, lists[p],
-                                                 gradient_at(particles, p, lists[p]), nullptr);
+      squared += residual_weight_ *
+                 residual_sum(particles, p, lists[p], gradient_at(particles, p, lists[p]), nullptr);
     sum += 0.5 * modulus_ * particles.volume0[p] * squared;
   }
   return sum;

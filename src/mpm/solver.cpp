@@ -133,8 +133,8 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
       for (const auto& body : c.bodies)
         points_per_cell = std::max(points_per_cell, body.points_per_cell);
       const double spacing = grid_.min_cell() / points_per_cell;
-      gradient_modulus_ += 4.0 * c.gradient_residual_weight * second_gradient_->modulus() /
-                           (spacing * spacing);
+      gradient_modulus_ +=
+          4.0 * c.gradient_residual_weight * second_gradient_->modulus() / (spacing * spacing);
     }
   }
   if (c.fixed_time_step)
