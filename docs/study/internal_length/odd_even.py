@@ -34,8 +34,10 @@ def nearest_output(f, time):
     return f[min(steps, key=lambda k: abs(f[k].attrs["time"] - time))]
 
 
-def ratios(group, region, quantity):
-    """{axis: (mean |second difference|, mean |first difference|)} over the region's points."""
+def differences(group, region, quantity, axis):
+    """(column i, row j, second difference, first difference) for every point of the region
+    with a neighbour on both sides along `axis` (0: x, 1: y) in the points' reference grid:
+    v_p - (v_a + v_b) / 2 and (v_b - v_a) / 2, a and b the neighbours before and after."""
     reference = group["positions"][:, :2] - group["displacement"][:, :2]
     if quantity == "exy":
         values = group["strain"][:, 3]
@@ -44,41 +46,37 @@ def ratios(group, region, quantity):
     h = np.min(np.diff(np.unique(np.round(reference[:, 0], 9))))
     index = {(int(round(x / h - 0.5)), int(round(y / h - 0.5))): p
              for p, (x, y) in enumerate(reference)}
+    di, dj = (1, 0) if axis == 0 else (0, 1)
     x0, x1, y0, y1 = region
+    out = []
+    for (i, j), p in index.items():
+        x, y = reference[p]
+        if not (x0 <= x <= x1 and y0 <= y <= y1):
+            continue
+        a, b = index.get((i - di, j - dj)), index.get((i + di, j + dj))
+        if a is None or b is None:
+            continue
+        out.append((i, j, values[p] - 0.5 * (values[a] + values[b]),
+                    0.5 * (values[b] - values[a])))
+    return h, out
+
+
+def ratios(group, region, quantity):
+    """{axis: (mean |second difference|, mean |first difference|)} over the region's points."""
     out = {}
-    for axis, (di, dj) in (("x", (1, 0)), ("y", (0, 1))):
-        second, first = [], []
-        for (i, j), p in index.items():
-            x, y = reference[p]
-            if not (x0 <= x <= x1 and y0 <= y <= y1):
-                continue
-            a, b = index.get((i - di, j - dj)), index.get((i + di, j + dj))
-            if a is None or b is None:
-                continue
-            second.append(abs(values[p] - 0.5 * (values[a] + values[b])))
-            first.append(0.5 * abs(values[b] - values[a]))
-        out[axis] = (float(np.mean(second)), float(np.mean(first)))
+    for axis, name in ((0, "x"), (1, "y")):
+        h, rows = differences(group, region, quantity, axis)
+        out[name] = (float(np.mean([abs(r[2]) for r in rows])),
+                     float(np.mean([abs(r[3]) for r in rows])))
     return h, out
 
 
 def alternating_component(group, region, quantity):
     """Mean over the region's rows of |mean over the row of (-1)^i (v_i - (v_{i-1} + v_{i+1})/2)
     / 2|: A for a pattern A (-1)^i, nothing for a linear trend."""
-    reference = group["positions"][:, :2] - group["displacement"][:, :2]
-    values = group["strain"][:, 3] if quantity == "exy" else \
-        group["deviatoric_strain"][()].ravel()
-    h = np.min(np.diff(np.unique(np.round(reference[:, 0], 9))))
-    index = {(int(round(x / h - 0.5)), int(round(y / h - 0.5))): p
-             for p, (x, y) in enumerate(reference)}
-    x0, x1, y0, y1 = region
     by_row = {}
-    for (i, j), p in index.items():
-        x, y = reference[p]
-        a, b = index.get((i - 1, j)), index.get((i + 1, j))
-        if not (x0 <= x <= x1 and y0 <= y <= y1) or a is None or b is None:
-            continue
-        sign = 1.0 if i % 2 == 0 else -1.0
-        by_row.setdefault(j, []).append(sign * (values[p] - 0.5 * (values[a] + values[b])) / 2)
+    for i, j, second, _ in differences(group, region, quantity, 0)[1]:
+        by_row.setdefault(j, []).append((1.0 if i % 2 == 0 else -1.0) * second / 2)
     return float(np.mean([abs(np.mean(v)) for v in by_row.values()]))
 
 
