@@ -4,9 +4,11 @@ pattern: alternate columns of points given two soils whose peak friction differs
 CONTRAST degrees (as two packings cloned to alternate columns differ), on h = B/8 or B/16.
 Whether the continuum then fills with the column-by-column alternation, and on which mesh,
 says whether B/16's mode is the discretisation's answer to a planted imperfection or the
-DEM packings' own.
+DEM packings' own. With --scattered each cell (one point) draws its soil by the splitmix64
+hash of its point's index, as `packing_order` "scattered" draws packings (points numbered
+along x first from the soil box's corner at the origin).
 
-usage: planted.py --cells-per-width 8|16 [--contrast 1.0] [--scattered] -o CASE.json
+usage: planted.py --cells-per-width 4|8|16 [--contrast 1.0] [--scattered] -o CASE.json
 """
 import argparse
 import copy
