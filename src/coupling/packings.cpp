@@ -92,6 +92,7 @@ Packing prepare_packing(const rve::RveSpec& spec, std::size_t k, const std::stri
       MPI_Barrier(group_comm);
     });
     rve->orient_cell();  // as its clones will be
+    rve->use_loading_time_step();
   } else {
     rve = or_end_job(label + " not loaded",
                      [&] { return rve::Rve::from_restart(spec, file, group_comm, label); });

@@ -189,6 +189,7 @@ std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohma
   if (test_.save_restart)
     rve->write_restart((std::filesystem::path(context.output_dir) / "prepared.restart").string());
   rve->orient_cell();
+  rve->use_loading_time_step();
   return rve;
 }
 

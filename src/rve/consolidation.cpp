@@ -33,7 +33,7 @@ Observables servo_isotropic(Rve& rve, double pressure, double tolerance, long& s
                             double stop_void_ratio) {
   const RveSpec& spec = rve.spec();
   const int dim = spec.dimension;
-  const double max_step = max_strain_rate(spec, pressure) * kChunk * spec.time_step;
+  const double max_step = max_strain_rate(spec, pressure) * kChunk * rve.time_step();
   Observables now = rve.observe();
   int settled = 0;
   while (steps_left > 0) {

@@ -98,8 +98,8 @@ std::string material_input(const RveSpec& spec, double friction) {
   return render(spec, "material.in", values);
 }
 
-std::string dynamics_input(const RveSpec& spec) {
-  return render(spec, "dynamics.in", {{"time_step", fmt(spec.time_step)}});
+std::string dynamics_input(const RveSpec& spec, double time_step) {
+  return render(spec, "dynamics.in", {{"time_step", fmt(time_step)}});
 }
 
 }  // namespace mpm_lig::rve

@@ -16,7 +16,7 @@ std::string setup_input(const RveSpec& spec, const Packing& packing);
 std::string restart_input(const RveSpec& spec, const std::string& restart_file);
 //! The contact law; `friction` overrides the spec's (compaction towards a target void ratio).
 std::string material_input(const RveSpec& spec, double friction);
-std::string dynamics_input(const RveSpec& spec);
+std::string dynamics_input(const RveSpec& spec, double time_step);
 
 //! Neighbour skin distance used for the RVE [m].
 double neighbour_skin(const RveSpec& spec);

@@ -25,7 +25,7 @@ double cell_measure(const Mat3& h, int dimension) {
 }  // namespace
 
 Rve::Rve(const RveSpec& spec, MPI_Comm comm, const std::string& label)
-    : spec_(spec), label_(label), comm_(comm) {
+    : spec_(spec), label_(label), comm_(comm), time_step_(spec.time_step) {
   dem::EngineOptions options;
   options.label = label;
   options.log_file = spec.log_file;
@@ -37,7 +37,8 @@ std::unique_ptr<Rve> Rve::generate(const RveSpec& spec, MPI_Comm comm, const std
   std::unique_ptr<Rve> rve(new Rve(spec, comm, label));
   rve->engine_->commands(setup_input(spec, packing));
   rve->engine_->commands(material_input(spec, spec.contact.friction));
-  rve->engine_->commands(dynamics_input(spec));
+  rve->engine_->commands(dynamics_input(spec, spec.preparation.time_step));
+  rve->time_step_ = spec.preparation.time_step;
   rve->engine_->command("run 0");
   return rve;
 }
@@ -52,7 +53,7 @@ std::unique_ptr<Rve> Rve::read(const RveSpec& spec, const std::string& restart_f
   std::unique_ptr<Rve> rve(new Rve(spec, comm, label));
   rve->engine_->commands(restart_input(spec, restart_file));
   rve->engine_->commands(material_input(spec, spec.contact.friction));
-  rve->engine_->commands(dynamics_input(spec));
+  rve->engine_->commands(dynamics_input(spec, spec.time_step));
   const long count = rve->engine_->atom_count();
   if (count != spec.grains) {
     throw std::runtime_error(label + ": restart file '" + restart_file + "' holds " +
@@ -142,7 +143,7 @@ Observables Rve::observe_health() {
 void Rve::add_cell_measures(const GrainState& grains, Observables& o) const {
   const double solid = solid_measure(grains.radius, spec_.dimension);
   o.void_ratio = cell_measure(box_matrix(), spec_.dimension) / solid - 1.0;
-  o.step_travel = o.max_speed_ratio * spec_.time_step;
+  o.step_travel = o.max_speed_ratio * time_step_;
 }
 
 void Rve::check_blow_up(const Observables& now) const {
@@ -214,6 +215,13 @@ void Rve::write_checkpoint(const std::string& file) {
   } catch (const std::exception& e) {
     throw std::runtime_error(label_ + ": " + e.what());
   }
+}
+
+void Rve::use_loading_time_step() {
+  if (time_step_ == spec_.time_step)
+    return;
+  engine_->command("timestep " + fmt(spec_.time_step));
+  time_step_ = spec_.time_step;
 }
 
 void Rve::restore(const State& s) {
@@ -347,7 +355,7 @@ int Rve::deform(const Mat3& dF, int substeps, EngineRun run) {
   const BoxStep step = box_step(rotation_.transpose() * dF * rotation_, h);
   const Mat3 effective = step.target * h.inverse();
   const int n = substeps > 0 ? substeps : substeps_for(effective);
-  set_streaming((effective - Mat3::Identity()) / (n * spec_.time_step));
+  set_streaming((effective - Mat3::Identity()) / (n * time_step_));
   run_to_box(step.target, n, run);
   rotation_ = rotation_ * step.rotation;
   particle_steps_ += static_cast<double>(n) * static_cast<double>(spec_.grains);

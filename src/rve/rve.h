@@ -48,6 +48,11 @@ class Rve {
 
   const RveSpec& spec() const { return spec_; }
   const std::string& label() const { return label_; }
+  //! The engine's DEM step now: the preparation's on a generated packing until
+  //! use_loading_time_step(), the RVE's own (spec().time_step) on every other.
+  double time_step() const { return time_step_; }
+  //! The packing is prepared: from here on it runs at the RVE's own step.
+  void use_loading_time_step();
   //! The ranks this RVE runs on.
   MPI_Comm comm() const { return comm_; }
   dem::Engine& engine() { return *engine_; }
@@ -146,6 +151,7 @@ class Rve {
   std::string label_;
   MPI_Comm comm_;
   std::unique_ptr<dem::Engine> engine_;
+  double time_step_;
   Mat3 rotation_ = Mat3::Identity();
   Mat3 streaming_ = Mat3::Zero();  //!< velocity gradient currently in the grain velocities
   double particle_steps_ = 0.0;

@@ -111,6 +111,22 @@ PreparationSpec parse_preparation(const CaseNode& node, int dimension) {
   return p;
 }
 
+//! The preparation's own DEM step if the case gives one (`time_step` [s] or
+//! `time_step_fraction` of the Rayleigh step), else the RVE's.
+double preparation_time_step(const CaseNode& node, const RveSpec& s) {
+  if (node.has("time_step") && node.has("time_step_fraction"))
+    node.fail("give at most one of time_step [s] and time_step_fraction (of the Rayleigh step)");
+  if (!node.has("time_step") && !node.has("time_step_fraction"))
+    return s.time_step;
+  const double step = node.has("time_step")
+                          ? node.positive("time_step")
+                          : node.in_range("time_step_fraction", 1e-3, 1.0) * s.rayleigh_time_step;
+  if (step > s.rayleigh_time_step)
+    node.fail("time_step", "exceeds the Rayleigh time step " + number(s.rayleigh_time_step) +
+                               " s of the smallest grain");
+  return step;
+}
+
 SubstepSpec parse_substeps(const CaseNode& node) {
   SubstepSpec s;
   if (node.has("fixed") == node.has("inertial_number"))
@@ -273,6 +289,8 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   if (s.time_step > s.rayleigh_time_step)
     node.fail("time_step", "exceeds the Rayleigh time step " + number(s.rayleigh_time_step) +
                                " s of the smallest grain");
+  s.preparation.time_step =
+      s.restart_file.empty() ? preparation_time_step(node.child("preparation"), s) : s.time_step;
   return s;
 }
 

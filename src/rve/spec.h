@@ -40,6 +40,9 @@ struct PreparationSpec {
   double initial_solid_fraction = 0.0;  //!< of the loose random packing
   double max_strain_rate = 0.0;         //!< servo strain rate limit [1/s]
   long max_steps = 0;                   //!< DEM step budget for the whole preparation
+  //! DEM time step of the preparation [s]: the RVE's own unless given, so that a packing can be
+  //! loaded at another step than the one it was made with (docs/dem_work.md §11).
+  double time_step = 0.0;
 };
 
 //! How many DEM steps one deformation increment takes.

@@ -41,7 +41,7 @@ TEST(EngineInput, RollingAndCohesionOnlyWhenAsked) {
 TEST(EngineInput, PlaneConstraintOnlyIn2d) {
   nlohmann::json rve = test::small_rve_json();
   rve["engine"] = "liggghts";
-  EXPECT_NE(rve::dynamics_input(test::parse_rve(rve)).find("enforce2d"), std::string::npos);
+  EXPECT_NE(rve::dynamics_input(test::parse_rve(rve), 1e-6).find("enforce2d"), std::string::npos);
   rve["dimension"] = 3;
-  EXPECT_EQ(rve::dynamics_input(test::parse_rve(rve)).find("enforce2d"), std::string::npos);
+  EXPECT_EQ(rve::dynamics_input(test::parse_rve(rve), 1e-6).find("enforce2d"), std::string::npos);
 }

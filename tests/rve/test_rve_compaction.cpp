@@ -8,7 +8,9 @@
 #include <string>
 
 #include "core/case_node.h"
+#include "dem/engine.h"
 #include "rve/consolidation.h"
+#include "rve/observables.h"
 #include "rve/rve.h"
 #include "test_rve_spec.h"
 
@@ -145,4 +147,61 @@ TEST(RveCompaction, MissedTargetStopsWithMessage) {
     EXPECT_NE(message.find("too loose a target"), std::string::npos) << message;
     EXPECT_NE(message.find("rve.preparation.target_void_ratio"), std::string::npos) << message;
   }
+}
+
+namespace {
+
+//! The engine's DEM step, measured: all grains given one more velocity along x, the packing
+//! run `steps` steps; momentum is conserved, so the grains' mass-weighted mean displacement
+//! is their mean velocity times the elapsed time.
+double measured_time_step(rve::Rve& rve, int steps) {
+  dem::Engine& engine = rve.engine();
+  engine.command("velocity all set 1e-3 0 0 sum yes units box");
+  const rve::GrainState before = rve::gather_grains(engine);
+  // The engine's own run: an RVE's update would take out the net momentum with its streaming.
+  engine.command("run " + std::to_string(steps));
+  const rve::GrainState after = rve::gather_grains(engine);
+  const dem::Box box = engine.box();
+  const Vec3 length = box.hi - box.lo;
+  double momentum = 0.0, moved = 0.0;
+  for (std::size_t i = 0; i < before.x.size(); ++i) {
+    Vec3 d = after.x[i] - before.x[i];
+    const double wraps_y = std::round(d.y() / length.y());  // a y wrap shifts x by the tilt
+    d.x() -= wraps_y * box.xy;
+    d.x() -= std::round(d.x() / length.x()) * length.x();
+    momentum += before.mass[i] * before.v[i].x();
+    moved += before.mass[i] * d.x();
+  }
+  return moved / (momentum * steps);
+}
+
+}  // namespace
+
+// A preparation at its own DEM step makes the packing the RVE's own step would not: the
+// loading then runs at the RVE's step (docs/dem_work.md §11).
+TEST(RvePreparation, OwnTimeStepPreparesAndTheRveLoadsAtItsOwn) {
+  const std::string preparation = R"({"confining_pressure": 1e5})";
+  const rve::RveSpec plain = spec_with(preparation);
+  rve::RveSpec split = spec_with(R"({"confining_pressure": 1e5, "time_step_fraction": 0.1})");
+  EXPECT_DOUBLE_EQ(plain.preparation.time_step, plain.time_step);
+  EXPECT_DOUBLE_EQ(split.preparation.time_step, 0.1 * split.rayleigh_time_step);
+  EXPECT_DOUBLE_EQ(split.time_step, 0.15 * split.rayleigh_time_step);
+
+  // The same preparation step, whatever the loading one: the same packing, bit for bit.
+  rve::RveSpec reference = spec_with(preparation);
+  reference.time_step = split.preparation.time_step;
+  reference.preparation.time_step = split.preparation.time_step;
+  auto a = rve::Rve::generate(reference, MPI_COMM_WORLD, "prepared at 0.1");
+  auto b = rve::Rve::generate(split, MPI_COMM_WORLD, "prepared at 0.1, loaded at 0.15");
+  EXPECT_DOUBLE_EQ(b->time_step(), split.preparation.time_step);
+  const rve::ConsolidationResult ca = rve::consolidate(*a);
+  const rve::ConsolidationResult cb = rve::consolidate(*b);
+  EXPECT_EQ(ca.steps, cb.steps);
+  EXPECT_EQ(ca.final.void_ratio, cb.final.void_ratio);
+  EXPECT_EQ(ca.final.stress, cb.final.stress);
+
+  b->use_loading_time_step();
+  EXPECT_DOUBLE_EQ(b->time_step(), split.time_step);
+  EXPECT_NEAR(measured_time_step(*a, 200), reference.time_step, 1e-6 * reference.time_step);
+  EXPECT_NEAR(measured_time_step(*b, 200), split.time_step, 1e-6 * split.time_step);
 }
