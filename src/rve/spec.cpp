@@ -111,20 +111,25 @@ PreparationSpec parse_preparation(const CaseNode& node, int dimension) {
   return p;
 }
 
-//! The preparation's own DEM step if the case gives one (`time_step` [s] or
-//! `time_step_fraction` of the Rayleigh step), else the RVE's.
+//! The DEM step `node` gives, as `time_step` [s] or `time_step_fraction` of the Rayleigh step
+//! (the caller has checked that exactly one is there), at most the Rayleigh step.
+double given_time_step(const CaseNode& node, double rayleigh_time_step) {
+  const double step = node.has("time_step")
+                          ? node.positive("time_step")
+                          : node.in_range("time_step_fraction", 1e-3, 1.0) * rayleigh_time_step;
+  if (step > rayleigh_time_step)
+    node.fail("time_step", "exceeds the Rayleigh time step " + number(rayleigh_time_step) +
+                               " s of the smallest grain");
+  return step;
+}
+
+//! The preparation's own DEM step if the case gives one, else the RVE's.
 double preparation_time_step(const CaseNode& node, const RveSpec& s) {
   if (node.has("time_step") && node.has("time_step_fraction"))
     node.fail("give at most one of time_step [s] and time_step_fraction (of the Rayleigh step)");
   if (!node.has("time_step") && !node.has("time_step_fraction"))
     return s.time_step;
-  const double step = node.has("time_step")
-                          ? node.positive("time_step")
-                          : node.in_range("time_step_fraction", 1e-3, 1.0) * s.rayleigh_time_step;
-  if (step > s.rayleigh_time_step)
-    node.fail("time_step", "exceeds the Rayleigh time step " + number(s.rayleigh_time_step) +
-                               " s of the smallest grain");
-  return step;
+  return given_time_step(node, s.rayleigh_time_step);
 }
 
 SubstepSpec parse_substeps(const CaseNode& node) {
@@ -283,12 +288,7 @@ RveSpec parse_rve_spec(const CaseNode& node) {
   s.rayleigh_time_step = rayleigh_time_step(s);
   if (node.has("time_step") == node.has("time_step_fraction"))
     node.fail("give exactly one of time_step [s] and time_step_fraction (of the Rayleigh step)");
-  s.time_step = node.has("time_step")
-                    ? node.positive("time_step")
-                    : node.in_range("time_step_fraction", 1e-3, 1.0) * s.rayleigh_time_step;
-  if (s.time_step > s.rayleigh_time_step)
-    node.fail("time_step", "exceeds the Rayleigh time step " + number(s.rayleigh_time_step) +
-                               " s of the smallest grain");
+  s.time_step = given_time_step(node, s.rayleigh_time_step);
   s.preparation.time_step =
       s.restart_file.empty() ? preparation_time_step(node.child("preparation"), s) : s.time_step;
   return s;
