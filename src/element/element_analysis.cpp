@@ -173,6 +173,7 @@ std::unique_ptr<rve::Rve> ElementTest::prepare(const RunContext& context, nlohma
                             {"coordination_number", c.final.coordination_number},
                             {"friction_used", c.friction_used},
                             {"dem_steps", c.steps},
+                            {"time_step", rve_.preparation.time_step},
                             {"target_void_ratio_reached", c.void_ratio_reached}};
   if (rve_.preparation.target_void_ratio) {
     summary["preparation"]["target_void_ratio"] = *rve_.preparation.target_void_ratio;

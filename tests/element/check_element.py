@@ -26,6 +26,10 @@ def check(ok, what):
 for key in ("wall_seconds", "dem_particle_steps", "engine"):
     check(key in summary, f"summary.json lacks {key}")
 check(summary["dem_particle_steps"] > 0, "no particle steps counted")
+# These cases give the preparation no step of its own: it is the RVE's.
+check(summary["preparation"]["time_step"] == summary["time_step"],
+      f"preparation step {summary['preparation']['time_step']} is not the RVE's "
+      f"{summary['time_step']}")
 for c in ["e_xx", "e_yy", "e_zz", "e_xy", "e_xz", "e_yz", "s_xx", "s_yy", "s_zz", "s_xy",
           "s_xz", "s_yz", "p", "q", "void_ratio", "coordination_number"]:
     check(c in rows[0], f"history.csv lacks column {c}")
