@@ -7,13 +7,15 @@ the DEM footing's B/16 takes a day of one core).
 
 usage: continuum_footing_mesh.py -o OUT [--mpm-lig build/mpm_lig] [--meshes 4 8 16]
        [--variants local length ...] [--length 0.08] [--softening-modulus 3.5e5] [--reuse]
+       [--flip F]
 
 Variants: local (no length), length (the second gradient), bounded01 / bounded03 (yield_strain
 0.1 / 0.3), residual (residual_weight 1). Writes OUT/<variant>_h<n>/ (case.json and the run)
 and OUT/continuum_footing_mesh.json: per run the MPM steps, the highest load to s/B 0.4 and
 the trapezoid means of q/q_s over the windows below, and the gradient's share of the footing's
 work over s/B 0.4-1.0 (stored, and dissipated by a bounded gradient). --reuse skips runs whose
-summary.json exists.
+summary.json exists. --flip sets analysis.flip (the base case's 0.99 otherwise) and adds
+_flipF to the run names.
 """
 import argparse
 import copy
@@ -33,7 +35,7 @@ VARIANTS = {"local": None, "length": {}, "bounded01": {"yield_strain": 0.1},
 WIDTH, SURCHARGE, SURFACE = 0.2, 1e5, 0.6
 
 
-def case_for(base, refinement, variant, length, softening_modulus):
+def case_for(base, refinement, variant, length, softening_modulus, flip=None):
     """The base case on h = B/refinement (0.6 x 0.8 m, cells of B/refinement) to s/B = 1.0."""
     c = copy.deepcopy(base)
     h = WIDTH / refinement
@@ -41,6 +43,8 @@ def case_for(base, refinement, variant, length, softening_modulus):
     c["analysis"]["end"]["time"] = WIDTH / c["rigid_bodies"][0]["velocity"]
     # the surcharge on the top row of points beside the footing (one point a cell)
     c["boundary_conditions"][3]["points"]["min"][1] = SURFACE - h / 2 - h / 4
+    if flip is not None:
+        c["analysis"]["flip"] = flip
     extra = VARIANTS[variant]
     if extra is not None:
         c["analysis"]["internal_length"] = {"length": length,
@@ -91,19 +95,20 @@ def main():
     p.add_argument("--length", type=float, default=0.08)
     p.add_argument("--softening-modulus", type=float, default=3.5e5)
     p.add_argument("--reuse", action="store_true")
+    p.add_argument("--flip", type=float)
     args = p.parse_args()
     base = json.load(open(BASE))
     os.makedirs(args.output, exist_ok=True)
     results = {}
     for variant in args.variants:
         for n in args.meshes:
-            name = f"{variant}_h{n}"
+            name = f"{variant}_h{n}" + ("" if args.flip is None else f"_flip{args.flip:g}")
             run_dir = os.path.join(args.output, name)
             case_path = os.path.join(args.output, f"{name}.json")
             if not (args.reuse and os.path.isfile(os.path.join(run_dir, "summary.json"))):
                 with open(case_path, "w") as f:
-                    json.dump(case_for(base, n, variant, args.length, args.softening_modulus),
-                              f, indent=1)
+                    json.dump(case_for(base, n, variant, args.length, args.softening_modulus,
+                                       args.flip), f, indent=1)
                 done = subprocess.run([args.mpm_lig, case_path, "--output", run_dir,
                                        "--replace"], capture_output=True, text=True)
                 if done.returncode != 0:
