@@ -19,13 +19,9 @@ import os
 import h5py
 import numpy as np
 
-from fields_beside_grains import equivalent_strain
+from fields_beside_grains import equivalent_strain, nearest_step
 
 THRESHOLDS = (0.05, 0.1, 0.15, 0.2, 0.3)
-
-
-def outputs(f, speed, width):
-    return [(k, speed * f[k].attrs["time"] / width) for k in f if k.startswith("step_")]
 
 
 def nearest(steps, s):
@@ -76,8 +72,9 @@ def main():
     for item in args.runs:
         run, _, label = item.partition(":")
         label = label or os.path.basename(run)
-        with h5py.File(os.path.join(run, "results.h5"), "r") as f:
-            steps = outputs(f, args.speed, args.width)
+        path = os.path.join(run, "results.h5")
+        steps = nearest_step(path, lambda attrs: args.speed * attrs["time"] / args.width)
+        with h5py.File(path, "r") as f:
             zone = slipping_zone(f, steps, args.since, args.to)
             states = [regions(f, steps, s, args.width, args.surface) for s in args.at]
         report[label] = {"slipping_zone": zone, "regions": states}
