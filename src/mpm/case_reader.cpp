@@ -553,6 +553,7 @@ void read_output(const CaseNode& root, MpmCase& c, const MaterialSet& materials)
   c.write_deformation = o.get_or<bool>("deformation_gradient", false);
   if (c.write_deformation && !c.write_fields)
     o.fail("deformation_gradient", "is written into results.h5, which output.fields turns off");
+  c.record_damping_work = o.get_or<bool>("damping_work", false);
   read_simple_shear(o, c);
   read_rve_snapshots(o, c, materials);
   if ((c.checkpoint_every = o.get_or<long>("checkpoint_every", 0)) < 0)

@@ -166,6 +166,9 @@ struct MpmCase {
   //! results.h5 also holds each point's F and the step's dF (output.deformation_gradient):
   //! what an element test needs to replay a point's path (element/recorded_path.h).
   bool write_deformation = false;
+  //! history.csv's `damping_work` (output.damping_work): what the local damping has taken out
+  //! of the motion since the main stage began.
+  bool record_damping_work = false;
   SimpleShearOutput simple_shear;
   RveSnapshotOutput rve_snapshots;
 };

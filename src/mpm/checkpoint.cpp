@@ -18,6 +18,8 @@ namespace {
 
 //! The bounded second gradient's relaxed part K and its dissipated energy.
 constexpr const char* kRelaxedGradient = "gradient_relaxed";
+//! output.damping_work's running sum.
+constexpr const char* kDampingWork = "damping_work";
 
 namespace fs = std::filesystem;
 
@@ -151,6 +153,8 @@ void write_state(const MpmCase& c, const Solver<D>& solver, const RecorderState&
   file.write("volume", p.volume);
   if (solver.second_gradient() && solver.second_gradient()->bounded())
     file.write(kRelaxedGradient, solver.second_gradient()->relaxation_state(p.size()));
+  if (c.record_damping_work)
+    file.write(kDampingWork, std::vector<double>{solver.damping_work()});
   std::vector<double> footings;
   for (const auto& f : solver.footings()) {
     footings.push_back(f.settlement());
@@ -280,6 +284,16 @@ RecorderState read_checkpoint(const MpmCase& c, Solver<D>& solver, const std::st
                                "' has no relaxed gradient: it was not written with "
                                "analysis.internal_length.yield_strain");
     gradient->restore_relaxation(file.read(kRelaxedGradient), p.size());
+  }
+  if (c.record_damping_work) {
+    if (!file.has(kDampingWork))
+      throw std::runtime_error("checkpoint '" + dir +
+                               "' has no damping work: it was not written with "
+                               "output.damping_work");
+    const std::vector<double> work = file.read(kDampingWork);
+    if (work.size() != 1)
+      throw std::runtime_error("checkpoint '" + dir + "': damping_work must hold one value");
+    solver.restore_damping_work(work[0]);
   }
   const std::vector<double> footings = file.read("footings");
   auto& rigid = solver.mutable_footings();

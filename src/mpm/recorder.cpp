@@ -105,6 +105,8 @@ std::vector<std::string> Recorder<D>::history_columns(const MpmCase& c) {
     columns.push_back("gradient_energy");
   if (c.has_bounded_gradient())
     columns.push_back("gradient_dissipation");
+  if (c.record_damping_work)
+    columns.push_back("damping_work");
   return columns;
 }
 
@@ -128,6 +130,8 @@ std::vector<double> Recorder<D>::history_row(const Solver<D>& solver,
     row.push_back(solver.gradient_energy());
   if (solver.has_second_gradient() && solver.second_gradient()->bounded())
     row.push_back(solver.gradient_dissipation());
+  if (solver.records_damping_work())
+    row.push_back(solver.damping_work());
   return row;
 }
 

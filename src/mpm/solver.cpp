@@ -93,6 +93,7 @@ Solver<D>::Solver(const MpmCase& c, MaterialSet materials)
       flip_(c.flip),
       damping_(c.damping),
       case_damping_(c.damping),
+      record_damping_work_(c.record_damping_work),
       mass_scaling_(c.mass_scaling) {
   for (const Footing& f : c.footings)
     footings_.emplace_back(f, grid_);
@@ -194,6 +195,7 @@ void Solver<D>::begin_main_stage() {
   }
   if (second_gradient_)
     second_gradient_->forget_relaxation();
+  damping_work_ = 0.0;
 }
 
 template <int D>
@@ -355,7 +357,21 @@ void Solver<D>::update_grid() {
     grid_.velocity[i] = v;
     grid_.velocity_new[i] = v + f * (dt_ / m);
   }
+  if (!record_damping_work_ || damping_ == 0.0) {
+    apply_boundary_conditions(true);
+    return;
+  }
+  trial_velocity_ = grid_.velocity_new;
   apply_boundary_conditions(true);
+  // The damping force over the step, at the velocity the points move with; a component that a
+  // constraint or a footing imposes is held by its reaction (which takes the damping force),
+  // so the damping does no work there.
+  for (std::size_t i = 0; i < grid_.node_count(); ++i) {
+    for (int d = 0; d < D; ++d) {
+      if (grid_.velocity_new[i][d] == trial_velocity_[i][d])
+        damping_work_ -= grid_.damping[i][d] * grid_.velocity_new[i][d] * dt_;
+    }
+  }
 }
 
 template <int D>

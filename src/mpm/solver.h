@@ -75,6 +75,13 @@ class Solver {
   double gradient_energy() const;
   //! What the bounded second gradient's relaxations dissipated so far (0 unbounded).
   double gradient_dissipation() const;
+  //! The work the local damping forces have taken out of the motion since the main stage
+  //! began [J; per unit thickness in 2D], with output.damping_work (else 0): a quasi-static
+  //! answer should not depend on it, and a footing in steady flow pays it on every moving
+  //! node (docs/methods.md §7).
+  double damping_work() const { return damping_work_; }
+  void restore_damping_work(double work) { damping_work_ = work; }
+  bool records_damping_work() const { return record_damping_work_; }
   bool has_second_gradient() const { return second_gradient_ != nullptr; }
   //! The second gradient, for its checkpoint (null without one).
   SecondGradient<D>* mutable_second_gradient() { return second_gradient_.get(); }
@@ -128,6 +135,9 @@ class Solver {
   double flip_;
   double damping_;
   double case_damping_;
+  bool record_damping_work_;
+  double damping_work_ = 0.0;
+  std::vector<Vec> trial_velocity_;  // v* before the constraints, with record_damping_work_
   double mass_scaling_;
   //! The stiffest material's wave modulus [Pa]: the scale of a penalty footing's stiffness.
   double contact_modulus_ = 0.0;
