@@ -7,7 +7,7 @@ the DEM footing's B/16 takes a day of one core).
 
 usage: continuum_footing_mesh.py -o OUT [--mpm-lig build/mpm_lig] [--meshes 4 8 16]
        [--variants local length ...] [--length 0.08] [--softening-modulus 3.5e5] [--reuse]
-       [--flip F]
+       [--flip F] [--set PATH=JSON ...] [--tag NAME] [--whole]
 
 Variants: local (no length), length (the second gradient), bounded01 / bounded03 (yield_strain
 0.1 / 0.3), residual (residual_weight 1). Writes OUT/<variant>_h<n>/ (case.json and the run)
@@ -15,7 +15,10 @@ and OUT/continuum_footing_mesh.json: per run the MPM steps, the highest load to 
 the trapezoid means of q/q_s over the windows below, and the gradient's share of the footing's
 work over s/B 0.4-1.0 (stored, and dissipated by a bounded gradient). --reuse skips runs whose
 summary.json exists. --flip sets analysis.flip (the base case's 0.99 otherwise) and adds
-_flipF to the run names.
+_flipF to the run names. --set changes any key of the case (PATH dotted, list items by index,
+VALUE as JSON: analysis.volumetric_smoothing=false, rigid_bodies.0.interface='"smooth"'); --tag
+NAME is added to the run names of such a probe. --whole runs the whole footing on a soil twice
+as wide, without the symmetry plane at its centre line (names get _whole).
 """
 import argparse
 import copy
@@ -35,20 +38,49 @@ VARIANTS = {"local": None, "length": {}, "bounded01": {"yield_strain": 0.1},
 WIDTH, SURCHARGE, SURFACE = 0.2, 1e5, 0.6
 
 
-def case_for(base, refinement, variant, length, softening_modulus, flip=None):
+def set_path(case, assignment):
+    """case[a][b][0]... = value for 'a.b.0=JSON'."""
+    path, value = assignment.split("=", 1)
+    keys = [int(k) if k.isdigit() else k for k in path.split(".")]
+    node = case
+    for k in keys[:-1]:
+        node = node[k]
+    node[keys[-1]] = json.loads(value)
+
+
+def mirror(c):
+    """The whole footing: the soil 1.2 m wide, the footing at its middle, the surcharge on both
+    sides of it."""
+    c["mesh"]["size"][0] = 1.2
+    c["bodies"][0]["box"]["max"][0] = 1.2
+    c["rigid_bodies"][0]["center"][0] = 0.6
+    right = c["boundary_conditions"][3]
+    left = copy.deepcopy(right)
+    right["points"]["min"][0], right["points"]["max"][0] = 0.7, 1.2
+    left["points"]["min"][0], left["points"]["max"][0] = 0.0, 0.5
+    c["boundary_conditions"].append(left)
+
+
+def case_for(base, refinement, variant, length, softening_modulus, flip=None, settings=(),
+             whole=False):
     """The base case on h = B/refinement (0.6 x 0.8 m, cells of B/refinement) to s/B = 1.0."""
     c = copy.deepcopy(base)
     h = WIDTH / refinement
-    c["mesh"]["cells"] = [round(0.6 / h), round(0.8 / h)]
+    if whole:
+        mirror(c)
+    c["mesh"]["cells"] = [round(c["mesh"]["size"][0] / h), round(0.8 / h)]
     c["analysis"]["end"]["time"] = WIDTH / c["rigid_bodies"][0]["velocity"]
     # the surcharge on the top row of points beside the footing (one point a cell)
-    c["boundary_conditions"][3]["points"]["min"][1] = SURFACE - h / 2 - h / 4
+    for bc in c["boundary_conditions"][3:]:
+        bc["points"]["min"][1] = SURFACE - h / 2 - h / 4
     if flip is not None:
         c["analysis"]["flip"] = flip
     extra = VARIANTS[variant]
     if extra is not None:
         c["analysis"]["internal_length"] = {"length": length,
                                             "softening_modulus": softening_modulus, **extra}
+    for assignment in settings:
+        set_path(c, assignment)
     c["title"] = f"continuum footing, h = B/{refinement}, {variant}, to s/B 1.0"
     c["_about"] = ("docs/study/internal_length/continuum_footing_mesh.py: mc_soft.json on "
                    f"h = B/{refinement} to s/B 1.0, {variant}")
@@ -96,6 +128,9 @@ def main():
     p.add_argument("--softening-modulus", type=float, default=3.5e5)
     p.add_argument("--reuse", action="store_true")
     p.add_argument("--flip", type=float)
+    p.add_argument("--set", nargs="+", default=[], dest="settings")
+    p.add_argument("--tag", default="")
+    p.add_argument("--whole", action="store_true")
     args = p.parse_args()
     base = json.load(open(BASE))
     os.makedirs(args.output, exist_ok=True)
@@ -103,12 +138,14 @@ def main():
     for variant in args.variants:
         for n in args.meshes:
             name = f"{variant}_h{n}" + ("" if args.flip is None else f"_flip{args.flip:g}")
+            name += f"_{args.tag}" if args.tag else ""
+            name += "_whole" if args.whole else ""
             run_dir = os.path.join(args.output, name)
             case_path = os.path.join(args.output, f"{name}.json")
             if not (args.reuse and os.path.isfile(os.path.join(run_dir, "summary.json"))):
                 with open(case_path, "w") as f:
                     json.dump(case_for(base, n, variant, args.length, args.softening_modulus,
-                                       args.flip), f, indent=1)
+                                       args.flip, args.settings, args.whole), f, indent=1)
                 done = subprocess.run([args.mpm_lig, case_path, "--output", run_dir,
                                        "--replace"], capture_output=True, text=True)
                 if done.returncode != 0:
@@ -121,10 +158,11 @@ def main():
                   f"{r['gradient_energy_share_0.4-1.0']:.3f} / "
                   f"{r['gradient_dissipation_share_0.4-1.0']:.3f}",
                   flush=True)
-    out = os.path.join(args.output, "continuum_footing_mesh.json")
+    out = os.path.join(args.output, "continuum_footing_mesh" + (f"_{args.tag}" if args.tag else "")
+                       + ".json")
     with open(out, "w") as f:
         json.dump({"length": args.length, "softening_modulus": args.softening_modulus,
-                   "runs": results}, f, indent=1)
+                   "settings": args.settings, "runs": results}, f, indent=1)
     print(f"wrote {out}")
 
 
