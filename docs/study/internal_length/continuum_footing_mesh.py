@@ -13,7 +13,8 @@ Variants: local (no length), length (the second gradient), bounded01 / bounded03
 0.1 / 0.3), residual (residual_weight 1). Writes OUT/<variant>_h<n>/ (case.json and the run)
 and OUT/continuum_footing_mesh.json: per run the MPM steps, the highest load to s/B 0.4 and
 the trapezoid means of q/q_s over the windows below, and the gradient's share of the footing's
-work over s/B 0.4-1.0 (stored, and dissipated by a bounded gradient). --reuse skips runs whose
+work over s/B 0.4-1.0 (stored, and dissipated by a bounded gradient) and the local damping's
+(output.damping_work, which every case it writes turns on) over s/B 0-0.4 and 0.4-1.0. --reuse skips runs whose
 summary.json exists. --flip sets analysis.flip (the base case's 0.99 otherwise) and adds
 _flipF to the run names. --set changes any key of the case (PATH dotted, list items by index,
 VALUE as JSON: analysis.volumetric_smoothing=false, rigid_bodies.0.interface='"smooth"'); --tag
@@ -81,6 +82,7 @@ def case_for(base, refinement, variant, length, softening_modulus, flip=None, se
                                             "softening_modulus": softening_modulus, **extra}
     for assignment in settings:
         set_path(c, assignment)
+    c["output"]["damping_work"] = True
     c["title"] = f"continuum footing, h = B/{refinement}, {variant}, to s/B 1.0"
     c["_about"] = ("docs/study/internal_length/continuum_footing_mesh.py: mc_soft.json on "
                    f"h = B/{refinement} to s/B 1.0, {variant}")
@@ -95,7 +97,9 @@ def read_history(path):
     load = np.array([float(r["load"]) for r in rows])
     energy = np.array([float(r.get("gradient_energy", 0.0) or 0.0) for r in rows])
     dissipated = np.array([float(r.get("gradient_dissipation", 0.0) or 0.0) for r in rows])
-    return s, q, load, energy, dissipated
+    damping = (np.array([float(r["damping_work"]) for r in rows]) if "damping_work" in rows[0]
+               else None)
+    return s, q, load, energy, dissipated, damping
 
 
 def window_mean(s, q, a, b):
@@ -104,7 +108,7 @@ def window_mean(s, q, a, b):
 
 
 def measure(run_dir):
-    s, q, load, energy, dissipated = read_history(os.path.join(run_dir, "history.csv"))
+    s, q, load, energy, dissipated, damping = read_history(os.path.join(run_dir, "history.csv"))
     u = s * WIDTH
     work = np.concatenate([[0.0], np.cumsum(0.5 * (load[1:] + load[:-1]) * np.diff(u))])
     a, b = np.searchsorted(s, 0.4), min(np.searchsorted(s, 1.0), len(s) - 1)
@@ -115,7 +119,13 @@ def measure(run_dir):
             "windows": {f"{lo}-{hi}": window_mean(s, q, lo, hi) for lo, hi in WINDOWS},
             "gradient_energy_share_0.4-1.0": float((energy[b] - energy[a]) / (work[b] - work[a])),
             "gradient_dissipation_share_0.4-1.0":
-                float((dissipated[b] - dissipated[a]) / (work[b] - work[a]))}
+                float((dissipated[b] - dissipated[a]) / (work[b] - work[a])),
+            # the local damping's work over the footing's (runs written before
+            # output.damping_work: None)
+            "damping_share_0.4-1.0": (None if damping is None else
+                                      float((damping[b] - damping[a]) / (work[b] - work[a]))),
+            "damping_share_0-0.4": (None if damping is None else
+                                    float((damping[a] - damping[0]) / (work[a] - work[0])))}
 
 
 def main():
@@ -156,7 +166,8 @@ def main():
             print(f"{name:14s} steps {r['mpm_steps']:6d} highest {r['highest']:.2f} "
                   f"({r['at']:.3f}) {w} gradient energy / dissipated share "
                   f"{r['gradient_energy_share_0.4-1.0']:.3f} / "
-                  f"{r['gradient_dissipation_share_0.4-1.0']:.3f}",
+                  f"{r['gradient_dissipation_share_0.4-1.0']:.3f} damping share 0-0.4 / 0.4-1.0 "
+                  f"{r['damping_share_0-0.4']} / {r['damping_share_0.4-1.0']}",
                   flush=True)
     out = os.path.join(args.output, "continuum_footing_mesh" + (f"_{args.tag}" if args.tag else "")
                        + ".json")
