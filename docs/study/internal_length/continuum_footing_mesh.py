@@ -7,7 +7,7 @@ the DEM footing's B/16 takes a day of one core).
 
 usage: continuum_footing_mesh.py -o OUT [--mpm-lig build/mpm_lig] [--meshes 4 8 16]
        [--variants local length ...] [--length 0.08] [--softening-modulus 3.5e5] [--reuse]
-       [--flip F] [--set PATH=JSON ...] [--tag NAME] [--whole]
+       [--flip F] [--set PATH=JSON ...] [--tag NAME] [--whole] [--plot PNG]
 
 Variants: local (no length), length (the second gradient), bounded01 / bounded03 (yield_strain
 0.1 / 0.3), residual (residual_weight 1). Writes OUT/<variant>_h<n>/ (case.json and the run)
@@ -19,7 +19,8 @@ summary.json exists. --flip sets analysis.flip (the base case's 0.99 otherwise) 
 _flipF to the run names. --set changes any key of the case (PATH dotted, list items by index,
 VALUE as JSON: analysis.volumetric_smoothing=false, rigid_bodies.0.interface='"smooth"'); --tag
 NAME is added to the run names of such a probe. --whole runs the whole footing on a soil twice
-as wide, without the symmetry plane at its centre line (names get _whole).
+as wide, without the symmetry plane at its centre line (names get _whole). --plot PNG draws
+q/q_s against s/B of every run of the call, one panel a variant.
 """
 import argparse
 import copy
@@ -128,6 +129,27 @@ def measure(run_dir):
                                     float((damping[a] - damping[0]) / (work[a] - work[0])))}
 
 
+def plot(args, results):
+    """q/q_s against s/B, one panel a variant, one line a mesh."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(args.variants), figsize=(5.5 * len(args.variants), 4),
+                             sharey=True, squeeze=False)
+    for ax, variant in zip(axes[0], args.variants):
+        for name in results:
+            if name.startswith(variant + "_h"):
+                s, q = read_history(os.path.join(args.output, name, "history.csv"))[:2]
+                ax.plot(s, q, lw=1, label=f"B/{name.split('_h')[1].split('_')[0]}")
+        title = variant + (f", {args.tag}" if args.tag else "")
+        ax.set(title=title, xlabel="s/B", xlim=(0, 1))
+        ax.legend()
+    axes[0][0].set_ylabel("q/q_s")
+    fig.tight_layout()
+    fig.savefig(args.plot, dpi=110)
+    print(f"wrote {args.plot}")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("-o", "--output", required=True)
@@ -141,6 +163,7 @@ def main():
     p.add_argument("--set", nargs="+", default=[], dest="settings")
     p.add_argument("--tag", default="")
     p.add_argument("--whole", action="store_true")
+    p.add_argument("--plot", metavar="PNG")
     args = p.parse_args()
     base = json.load(open(BASE))
     os.makedirs(args.output, exist_ok=True)
@@ -169,6 +192,8 @@ def main():
                   f"{r['gradient_dissipation_share_0.4-1.0']:.3f} damping share 0-0.4 / 0.4-1.0 "
                   f"{r['damping_share_0-0.4']} / {r['damping_share_0.4-1.0']}",
                   flush=True)
+    if args.plot:
+        plot(args, results)
     out = os.path.join(args.output, "continuum_footing_mesh" + (f"_{args.tag}" if args.tag else "")
                        + ".json")
     with open(out, "w") as f:
