@@ -357,12 +357,16 @@ void Solver<D>::update_grid() {
     grid_.velocity[i] = v;
     grid_.velocity_new[i] = v + f * (dt_ / m);
   }
-  if (!record_damping_work_ || damping_ == 0.0) {
-    apply_boundary_conditions(true);
-    return;
-  }
-  trial_velocity_ = grid_.velocity_new;
+  const bool record = record_damping_work_ && damping_ != 0.0;
+  if (record)
+    trial_velocity_ = grid_.velocity_new;
   apply_boundary_conditions(true);
+  if (record)
+    add_damping_work();
+}
+
+template <int D>
+void Solver<D>::add_damping_work() {
   // The damping force over the step, at the velocity the points move with; a component that a
   // constraint or a footing imposes is held by its reaction (which takes the damping force),
   // so the damping does no work there.

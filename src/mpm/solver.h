@@ -108,6 +108,8 @@ class Solver {
   void compute_external_forces();
   void map_particles_to_grid();
   void update_grid();
+  //! The step's share of damping_work_: v* after the constraints against trial_velocity_.
+  void add_damping_work();
   void apply_boundary_conditions(bool record);
   void map_grid_to_particles();
   void remap_momentum();
