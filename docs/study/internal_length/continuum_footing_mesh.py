@@ -16,8 +16,8 @@ the trapezoid means of q/q_s over the windows below, and the gradient's share of
 work over s/B 0.4-1.0 (stored, and dissipated by a bounded gradient) and the local damping's
 (output.damping_work, which every case it writes turns on) over s/B 0-0.4 and 0.4-1.0. --reuse skips runs whose
 summary.json exists. --flip sets analysis.flip (the base case's 0.99 otherwise) and adds
-_flipF to the run names. --set changes any key of the case (PATH dotted, list items by index,
-VALUE as JSON: analysis.volumetric_smoothing=false, rigid_bodies.0.interface='"smooth"'); --tag
+_flipF to the run names. --set changes any key of the case (PATH as study specs write it,
+VALUE as JSON: analysis.volumetric_smoothing=false, rigid_bodies[0].interface='"smooth"'); --tag
 NAME is added to the run names of such a probe. --whole runs the whole footing on a soil twice
 as wide, without the symmetry plane at its centre line (names get _whole). --plot PNG draws
 q/q_s against s/B of every run of the call, one panel a variant.
@@ -33,21 +33,14 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools"))
+from mpm_lig_post.study_spec import set_path  # noqa: E402
+
 BASE = os.path.join(HERE, "odd_even_continuum", "mc_soft.json")
 WINDOWS = [(0.05, 0.1), (0.1, 0.4), (0.4, 1.0), (0.4, 0.7), (0.7, 1.0)]
 VARIANTS = {"local": None, "length": {}, "bounded01": {"yield_strain": 0.1},
             "bounded03": {"yield_strain": 0.3}, "residual": {"residual_weight": 1.0}}
 WIDTH, SURCHARGE, SURFACE = 0.2, 1e5, 0.6
-
-
-def set_path(case, assignment):
-    """case[a][b][0]... = value for 'a.b.0=JSON'."""
-    path, value = assignment.split("=", 1)
-    keys = [int(k) if k.isdigit() else k for k in path.split(".")]
-    node = case
-    for k in keys[:-1]:
-        node = node[k]
-    node[keys[-1]] = json.loads(value)
 
 
 def mirror(c):
@@ -82,7 +75,8 @@ def case_for(base, refinement, variant, length, softening_modulus, flip=None, se
         c["analysis"]["internal_length"] = {"length": length,
                                             "softening_modulus": softening_modulus, **extra}
     for assignment in settings:
-        set_path(c, assignment)
+        path, value = assignment.split("=", 1)
+        set_path(c, path, json.loads(value), create=True)
     c["output"]["damping_work"] = True
     c["title"] = f"continuum footing, h = B/{refinement}, {variant}, to s/B 1.0"
     c["_about"] = ("docs/study/internal_length/continuum_footing_mesh.py: mc_soft.json on "
