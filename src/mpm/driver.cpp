@@ -122,26 +122,6 @@ int rank_of(MPI_Comm comm) {
   return rank;
 }
 
-//! The local damping opposes every moving node's velocity with a share of its unbalanced force:
-//! under a footing pushed at a speed the soil flows steadily one way, and the damping turns the
-//! force's fluctuations into a resistance that the footing's load carries (docs/methods.md §7,
-//! the local damping). Said once, on rank 0, when a case combines the two.
-void warn_damped_footing(const MpmCase& c, int rank) {
-  if (rank != 0 || c.damping <= 0.0)
-    return;
-  for (std::size_t f = 0; f < c.footings.size(); ++f) {
-    if (c.footings[f].velocity == 0.0)
-      continue;
-    std::fprintf(stderr,
-                 "mpm_lig: warning: analysis.damping %g with rigid_bodies[%zu] pushed at a "
-                 "speed: the local damping resists the soil's steady flow and raises the "
-                 "footing's load (docs/methods.md §7, the local damping); analysis.damping 0 "
-                 "leaves it out, output.damping_work measures it\n",
-                 c.damping, f);
-    return;
-  }
-}
-
 //! Whether this run writes checkpoints (and honours stop signals with one).
 bool writes_checkpoints(const RunOptions& options) {
   return options.checkpoints && !options.run_dir.empty();
@@ -286,7 +266,6 @@ bool run_case(MpmProblem problem, const RunOptions& options,
   const long total = main_stage_steps(c, solver.dt());
   StageOutputs<D> outputs(c, solver, options, total, resumed);
   const int rank = rank_of(options.comm);
-  warn_damped_footing(c, rank);
   DeferredCheckpoint deferred;
   while (solver.steps() < total) {
     solver.step();

@@ -2,6 +2,8 @@
 
 #include <mpi.h>
 
+#include <cstdio>
+
 #include "mpm/case_size.h"
 #include "mpm/case_spec.h"
 #include "mpm/driver.h"
@@ -9,6 +11,27 @@
 
 namespace mpm_lig::mpm {
 namespace {
+
+//! The local damping opposes every moving node's velocity with a share of its unbalanced force:
+//! under a footing driven at a speed the soil flows steadily one way, and the damping turns the
+//! force's fluctuations into a resistance that the footing's load carries (docs/methods.md §7,
+//! the local damping). Said once per run, on rank 0, before the materials are prepared.
+void warn_damped_footing(const MpmCase& c, int rank) {
+  if (rank != 0 || c.damping <= 0.0)
+    return;
+  for (std::size_t f = 0; f < c.footings.size(); ++f) {
+    if (c.footings[f].velocity == 0.0)
+      continue;
+    std::fprintf(stderr,
+                 "mpm_lig: warning: analysis.damping %g with rigid_bodies[%zu] driven at a "
+                 "speed: the local damping resists the soil's steady flow and raises the "
+                 "footing's load (docs/methods.md §7, the local damping; the shipped footings "
+                 "keep it so that their published results stand); analysis.damping 0 leaves "
+                 "it out, output.damping_work measures it\n",
+                 c.damping, f);
+    return;
+  }
+}
 
 //! An explicit MPM run. The MPM is replicated on every rank (same arithmetic everywhere, so
 //! the same answer); a DEM material spreads its RVEs over the ranks and gathers their
@@ -68,6 +91,7 @@ class MpmAnalysis final : public Analysis {
     MPI_Comm_size(context.comm, &options.ranks);
     const double start = MPI_Wtime();
     options.hooks = context.hooks;
+    warn_damped_footing(problem_.spec, rank);
     prepare_materials(problem_, context.comm, dir + "/packings", context.hooks);
     options.prior_seconds = MPI_Wtime() - start;
     // run() is called once: the problem's materials move into the solver.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A footing pushed into damped soil says so once; undamped, or damped without a footing, not.
+"""A footing driven into damped soil says so once; undamped, or standing still, it does not.
 
 usage: check_damped_footing_warning.py MPM_LIG CASE WORK_DIR [LAUNCHER ...]
 
