@@ -602,10 +602,14 @@ def interrupt_loading(work):
     os.makedirs(os.path.join(slow, "numpy"))
     # The marker is made inside the try (the signal, sent once it exists, lands there), and a
     # second import after an interrupted one does not stall again (it would wait a minute on
-    # a loaded machine where the signal came before the first one reached its sleep).
+    # a loaded machine where the signal came before the first one reached its sleep). The
+    # stall sleeps in short naps: a signal that arrives after Python's last check and before
+    # a sleep's system call does not cut that sleep short, and the next nap's check sees it.
     stall = ("import os, time\nmarker = os.environ['SLOW_IMPORT_MARKER']\n"
              "first = not os.path.exists(marker)\n"
-             "try:\n    if first:\n        open(marker, 'w').close()\n        time.sleep(60)\n"
+             "try:\n    if first:\n        open(marker, 'w').close()\n"
+             "        end = time.monotonic() + 60\n"
+             "        while time.monotonic() < end:\n            time.sleep(0.05)\n"
              "except KeyboardInterrupt:\n    lost = True\n")
     with open(os.path.join(slow, "argparse.py"), "w") as f:
         f.write(stall + "    raise\n")
