@@ -15,7 +15,8 @@ namespace {
 //! The local damping opposes every moving node's velocity with a share of its unbalanced force:
 //! under a footing driven at a speed the soil flows steadily one way, and the damping turns the
 //! force's fluctuations into a resistance that the footing's load carries (docs/methods.md §7,
-//! the local damping). Said once per run, on rank 0, before the materials are prepared.
+//! the local damping). Said once per invocation (a resume too), on rank 0, before the
+//! materials are prepared.
 void warn_damped_footing(const MpmCase& c, int rank) {
   if (rank != 0 || c.damping <= 0.0)
     return;
